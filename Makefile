@@ -1,0 +1,27 @@
+# rle_vision: `make demo` and `make test` do all set-up on a fresh Debian bookworm machine.
+SHELL := /bin/bash
+DURATION ?= 0
+JOBS ?= 2
+export JOBS
+
+.PHONY: all deps build demo test bench clean
+
+all: build
+
+deps:
+	@scripts/install_deps.sh
+
+build: deps
+	@scripts/build.sh
+
+demo: build
+	@scripts/demo.sh "$(DURATION)"
+
+test: build
+	@scripts/run_tests.sh
+
+bench: build
+	@scripts/bench.sh
+
+clean:
+	rm -rf .ws

@@ -1,0 +1,67 @@
+// Frame-to-frame tracking of regions: gated nearest neighbour on predicted centroid and size,
+// giving stable ids and image velocities.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "rle_vision/regions.h"
+
+namespace rle_vision {
+
+struct TrackerOptions {
+  double gate_px = 48.0;           // largest centroid jump from the predicted position, px
+  double max_area_ratio = 4.0;     // largest area change between frames (larger/smaller)
+  int max_missed_frames = 5;       // a track unseen for longer is forgotten
+  double velocity_smoothing = 0.5;  // weight of the newest velocity measurement, in (0, 1]
+};
+
+struct TrackedBlob {
+  Region region;
+  uint32_t id = 0;
+  double vx = 0, vy = 0;  // px/s, 0 on first sight
+  uint32_t age = 0;       // frames since first seen
+};
+
+class BlobTracker {
+ public:
+  explicit BlobTracker(const TrackerOptions& options = TrackerOptions()) : options_(options) {}
+  void setOptions(const TrackerOptions& options) { options_ = options; }
+
+  // `stamp_s` is the image time in seconds. Time running backwards (a looped bag) starts over
+  // and returns true from lastUpdateRestarted(). Blobs come in the order of `regions`.
+  void update(const std::vector<Region>& regions, double stamp_s, std::vector<TrackedBlob>* blobs);
+  void reset();
+  bool lastUpdateRestarted() const { return restarted_; }
+  size_t trackCount() const { return tracks_.size(); }
+
+ private:
+  struct Track {
+    uint32_t id;
+    int label;
+    double cx, cy, vx, vy;
+    uint32_t area;
+    uint64_t first_frame;
+    double last_seen_s;
+    int missed;
+    bool has_velocity;
+  };
+  struct Candidate {
+    double cost;
+    int track, region;
+  };
+
+  TrackerOptions options_;
+  std::vector<Track> tracks_;
+  std::vector<Candidate> candidates_;
+  std::vector<int> region_track_;
+  std::vector<char> track_matched_;
+  uint32_t next_id_ = 1;
+  uint64_t frame_ = 0;
+  double last_stamp_s_ = 0;
+  bool has_stamp_ = false;
+  bool restarted_ = false;
+};
+
+}  // namespace rle_vision

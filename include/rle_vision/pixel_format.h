@@ -1,0 +1,28 @@
+// Pixel layouts the core accepts, named after their ROS image encodings.
+#pragma once
+
+#include <string>
+
+#include <opencv2/core.hpp>
+
+namespace rle_vision {
+
+enum class PixelFormat {
+  BGR8,  // "bgr8"
+  RGB8,  // "rgb8"
+  MONO8,  // "mono8"
+  UYVY,  // "yuv422" (ROS's name for UYVY 4:2:2)
+  YUYV,  // "yuv422_yuy2"
+};
+
+// Maps a sensor_msgs/Image encoding to a format. Returns false for unsupported encodings.
+bool pixelFormatFromEncoding(const std::string& encoding, PixelFormat* format);
+const char* encodingOf(PixelFormat format);
+// The encodings accepted, for error messages: "bgr8, rgb8, mono8, yuv422, yuv422_yuy2".
+const char* supportedEncodings();
+
+// Checks that an image can be processed as `format`. Returns "" when it can, otherwise a
+// sentence saying what is wrong (empty image, wrong channel count or depth, odd width for 4:2:2).
+std::string checkImage(const cv::Mat& image, PixelFormat format);
+
+}  // namespace rle_vision

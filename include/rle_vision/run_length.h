@@ -1,0 +1,29 @@
+// Run-length encoding of labelled rows.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace rle_vision {
+
+// A horizontal run of equally labelled pixels.
+struct Run {
+  int32_t x0;      // first pixel, inclusive
+  int32_t x1;      // last pixel, inclusive
+  int32_t y;       // row
+  int32_t parent;  // union-find parent: index into the run list
+  uint8_t label;   // 1 + colour class index (label 0, background, is never stored)
+
+  int32_t length() const { return x1 - x0 + 1; }
+};
+
+// Appends the runs of one row of labels (label 0 is background and produces no run).
+// Runs are appended left to right with parent = their own index.
+void appendRowRuns(const uint8_t* labels, int width, int y, std::vector<Run>* runs);
+
+// Run-length encodes a whole CV_8UC1 label image given as rows: fills `runs` (row-major order)
+// and `row_starts` (size rows + 1; the runs of row y are [row_starts[y], row_starts[y + 1])).
+void encodeLabelRows(const uint8_t* const* rows, int width, int height, std::vector<Run>* runs,
+                     std::vector<int32_t>* row_starts);
+
+}  // namespace rle_vision

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs the Debian packages rle_vision needs that are not installed yet (non-interactive,
+# through sudo when not root). Debian bookworm ships ROS 1 under /usr.
+set -euo pipefail
+
+packages=(
+  build-essential cmake catkin ros-core-dev
+  libroscpp-dev libnodelet-dev libnodeletlib-dev libnodeletlib-tools pluginlib-dev
+  libcv-bridge-dev libimage-transport-dev libtf2-ros-dev libtf2-eigen-dev libtf2-dev
+  libopencv-dev libeigen3-dev libyaml-cpp-dev
+  ros-sensor-msgs ros-geometry-msgs ros-visualization-msgs ros-std-msgs
+  python3-sensor-msgs python3-geometry-msgs python3-std-msgs python3-visualization-msgs
+  python3-rospy python3-rostest librostest-dev python3-roslaunch python3-rostopic python3-rosnode
+  librosbag-dev python3-rosbag ros-message-generation ros-message-runtime
+  libdiagnostic-updater-dev libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  libbenchmark-dev libgtest-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+done
+if [[ ${#missing[@]} -eq 0 ]]; then
+  echo "[deps] all ${#packages[@]} Debian packages present"
+  exit 0
+fi
+
+sudo=""
+if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
+echo "[deps] installing ${#missing[@]} missing Debian packages: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -q
+$sudo apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -1,0 +1,98 @@
+#include "rle_vision/regions.h"
+
+#include <cmath>
+
+namespace rle_vision {
+namespace {
+
+// Joins two sets; the smaller root index wins, so a root is always its region's first run.
+void unite(std::vector<Run>& runs, int32_t a, int32_t b) {
+  a = findRoot(runs, a);
+  b = findRoot(runs, b);
+  if (a < b) {
+    runs[b].parent = a;
+  } else if (b < a) {
+    runs[a].parent = b;
+  }
+}
+
+// Sum of k^2 for k = 0..n (n >= -1).
+inline int64_t sumOfSquares(int64_t n) { return n * (n + 1) * (2 * n + 1) / 6; }
+
+}  // namespace
+
+void RegionBuilder::build(std::vector<Run>* runs_ptr, const std::vector<int32_t>& row_starts,
+                          Connectivity connectivity, const std::vector<uint32_t>& min_area_by_label,
+                          std::vector<Region>* regions) {
+  std::vector<Run>& runs = *runs_ptr;
+  regions->clear();
+  const int32_t reach = connectivity == Connectivity::Eight ? 1 : 0;
+  const int rows = static_cast<int>(row_starts.size()) - 1;
+  for (int y = 1; y < rows; ++y) {
+    int32_t above = row_starts[y - 1];
+    const int32_t above_end = row_starts[y];
+    for (int32_t i = row_starts[y]; i < row_starts[y + 1]; ++i) {
+      const Run& run = runs[i];
+      // Runs above that end left of this one cannot touch it nor any run further right.
+      while (above < above_end && runs[above].x1 + reach < run.x0) ++above;
+      for (int32_t j = above; j < above_end && runs[j].x0 <= run.x1 + reach; ++j) {
+        if (runs[j].label == run.label) unite(runs, i, j);
+      }
+    }
+  }
+
+  // One pass over runs accumulates each region's moments; a root precedes its members.
+  moment_index_.resize(runs.size());
+  moments_.clear();
+  for (int32_t i = 0; i < static_cast<int32_t>(runs.size()); ++i) {
+    const Run& run = runs[i];
+    const int32_t root = findRoot(runs, i);
+    runs[i].parent = root;  // flatten: callers can read a run's region from its parent
+    if (root == i) {
+      moment_index_[i] = static_cast<int32_t>(moments_.size());
+      moments_.push_back(Moments{0, 0, 0, 0, 0, 0, run.x0, run.y, run.x1, run.y});
+    }
+    Moments& m = moments_[moment_index_[root]];
+    const int64_t n = run.length();
+    const int64_t sx = (static_cast<int64_t>(run.x0) + run.x1) * n / 2;
+    const int64_t y = run.y;
+    m.area += n;
+    m.sum_x += sx;
+    m.sum_y += n * y;
+    m.sum_xx += sumOfSquares(run.x1) - sumOfSquares(run.x0 - 1);
+    m.sum_yy += n * y * y;
+    m.sum_xy += sx * y;
+    if (run.x0 < m.left) m.left = run.x0;
+    if (run.x1 > m.right) m.right = run.x1;
+    m.bottom = run.y;  // runs come in row order
+  }
+
+  for (int32_t i = 0; i < static_cast<int32_t>(runs.size()); ++i) {
+    if (runs[i].parent != i) continue;
+    const Moments& m = moments_[moment_index_[i]];
+    const int label = runs[i].label;
+    if (label < static_cast<int>(min_area_by_label.size()) &&
+        static_cast<uint64_t>(m.area) < min_area_by_label[label]) {
+      continue;
+    }
+    Region r;
+    r.label = label;
+    r.area = static_cast<uint32_t>(m.area);
+    const double inv = 1.0 / static_cast<double>(m.area);
+    r.cx = m.sum_x * inv;
+    r.cy = m.sum_y * inv;
+    r.left = m.left;
+    r.top = m.top;
+    r.right = m.right;
+    r.bottom = m.bottom;
+    r.var_xx = m.sum_xx * inv - r.cx * r.cx;
+    r.var_yy = m.sum_yy * inv - r.cy * r.cy;
+    r.var_xy = m.sum_xy * inv - r.cx * r.cy;
+    r.angle = 0.5 * std::atan2(2.0 * r.var_xy, r.var_xx - r.var_yy);
+    if (r.angle <= -M_PI / 2) r.angle += M_PI;  // atan2(-0, negative) = -pi; keep (-pi/2, pi/2]
+    r.root_run = i;
+    regions->push_back(r);
+  }
+}
+
+}  // namespace rle_vision

@@ -1,0 +1,301 @@
+#include "rle_vision/scene_simulator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Geometry>
+#include <opencv2/imgproc.hpp>
+
+namespace rle_vision {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+constexpr double kNearPlaneM = 0.02;
+constexpr int kSubPixelBits = 8;  // fillConvexPoly's fixed-point vertex precision
+
+// Sutherland-Hodgman clip of a convex polygon to the half-space inside(p) >= 0, where
+// `inside` is affine in p.
+template <typename Point, typename Inside>
+std::vector<Point> clipPolygon(const std::vector<Point>& polygon, Inside inside) {
+  std::vector<Point> out;
+  const size_t n = polygon.size();
+  for (size_t i = 0; i < n; ++i) {
+    const Point& a = polygon[i];
+    const Point& b = polygon[(i + 1) % n];
+    const double da = inside(a), db = inside(b);
+    if (da >= 0) out.push_back(a);
+    if ((da >= 0) != (db >= 0)) out.push_back(a + (b - a) * (da / (da - db)));
+  }
+  return out;
+}
+
+// Light from above, behind the robot and a little to the left.
+const Eigen::Vector3d kLightDirection = Eigen::Vector3d(-0.5, 0.3, 0.8).normalized();
+
+double faceShade(const Eigen::Vector3d& normal) {
+  return 0.75 + 0.25 * std::max(0.0, normal.dot(kLightDirection));
+}
+
+cv::Scalar litBgr(const Channels& rgb, double shade, double gain, const std::array<double, 3>& cast) {
+  auto channel = [&](int c) {
+    return std::min(255.0, std::max(0.0, std::round(rgb[c] * shade * gain * cast[c])));
+  };
+  return cv::Scalar(channel(2), channel(1), channel(0));
+}
+
+bool finite(double v) { return std::isfinite(v); }
+
+}  // namespace
+
+std::string validateSceneConfig(const SceneConfig& c) {
+  if (c.width <= 1 || c.height <= 1 || c.width > 8192 || c.height > 8192) {
+    return "image size must be between 2x2 and 8192x8192, got " + std::to_string(c.width) + "x" +
+           std::to_string(c.height);
+  }
+  if (!finite(c.hfov_deg) || c.hfov_deg <= 1 || c.hfov_deg >= 179) {
+    return "hfov_deg must be in (1, 179)";
+  }
+  if (!finite(c.camera_height_m) || c.camera_height_m <= 0) return "camera height_m must be > 0";
+  for (double v : {c.camera_pitch_deg, c.camera_roll_deg, c.camera_yaw_deg, c.gait_frequency_hz,
+                   c.gait_roll_amplitude_deg, c.gait_pitch_amplitude_deg,
+                   c.gait_yaw_amplitude_deg, c.gait_bob_amplitude_m, c.light_gain_start,
+                   c.light_gain_end, c.light_drift_duration_s, c.noise_sigma, c.blur_sigma_px}) {
+    if (!finite(v)) return "a camera, gait, lighting or noise value is not a finite number";
+  }
+  if (c.camera_height_m - std::fabs(c.gait_bob_amplitude_m) <= kNearPlaneM) {
+    return "camera height_m minus gait bob_amplitude_m must stay above the ground";
+  }
+  if (c.light_gain_start < 0 || c.light_gain_end < 0) return "light gains must be >= 0";
+  if (c.light_drift_duration_s < 0) return "light drift_duration_s must be >= 0";
+  for (int i = 0; i < 3; ++i) {
+    if (!finite(c.light_cast_start_rgb[i]) || !finite(c.light_cast_end_rgb[i]) ||
+        c.light_cast_start_rgb[i] < 0 || c.light_cast_end_rgb[i] < 0) {
+      return "light casts must be finite and >= 0";
+    }
+  }
+  if (c.noise_sigma < 0) return "noise sigma must be >= 0";
+  if (c.blur_sigma_px < 0 || c.blur_sigma_px > 20) return "blur_sigma_px must be in [0, 20]";
+  if (c.boxes.size() > 255u - SceneSimulator::kFirstBoxLabel) return "too many boxes (at most 253)";
+  for (const SceneBox& b : c.boxes) {
+    for (double v : {b.x_m, b.y_m, b.depth_m, b.width_m, b.height_m, b.yaw_deg, b.vx_mps, b.vy_mps,
+                     b.sway_x_m, b.sway_y_m, b.sway_period_s}) {
+      if (!finite(v)) return "box '" + b.name + "' has a value that is not a finite number";
+    }
+    if (b.depth_m <= 0 || b.width_m <= 0 || b.height_m <= 0) {
+      return "box '" + b.name + "' needs depth_m, width_m and height_m > 0";
+    }
+    if (b.sway_period_s < 0) return "box '" + b.name + "' has a negative sway period_s";
+  }
+  return "";
+}
+
+SceneSimulator::SceneSimulator(const SceneConfig& config) : config_(config) {
+  const std::string problem = validateSceneConfig(config_);
+  if (!problem.empty()) throw std::invalid_argument(problem);
+  camera_ = PinholeCamera::fromHorizontalFov(config_.width, config_.height,
+                                             config_.hfov_deg * kDegToRad);
+}
+
+CameraPose SceneSimulator::poseAt(double t) const {
+  const double phase = 2 * M_PI * config_.gait_frequency_hz * t;
+  CameraPose pose;
+  pose.roll = (config_.camera_roll_deg + config_.gait_roll_amplitude_deg * std::sin(phase)) * kDegToRad;
+  pose.pitch =
+      (config_.camera_pitch_deg + config_.gait_pitch_amplitude_deg * std::sin(2 * phase)) * kDegToRad;
+  pose.yaw = (config_.camera_yaw_deg +
+              config_.gait_yaw_amplitude_deg * std::sin(phase + M_PI / 2)) * kDegToRad;
+  pose.height_m = config_.camera_height_m + config_.gait_bob_amplitude_m * std::sin(2 * phase);
+  return pose;
+}
+
+double SceneSimulator::lightGainAt(double t) const {
+  const double f = config_.light_drift_duration_s > 0
+                       ? std::min(1.0, std::max(0.0, t / config_.light_drift_duration_s))
+                       : 0.0;
+  return config_.light_gain_start + f * (config_.light_gain_end - config_.light_gain_start);
+}
+
+Eigen::Vector2d SceneSimulator::boxPositionAt(const SceneBox& box, double t) const {
+  Eigen::Vector2d p(box.x_m + box.vx_mps * t, box.y_m + box.vy_mps * t);
+  if (box.sway_period_s > 0) {
+    const double s = std::sin(2 * M_PI * t / box.sway_period_s);
+    p += Eigen::Vector2d(box.sway_x_m, box.sway_y_m) * s;
+  }
+  return p;
+}
+
+SimFrame SceneSimulator::render(uint64_t frame_index, double t) const {
+  const int width = config_.width, height = config_.height;
+  SimFrame frame;
+  frame.frame_index = frame_index;
+  frame.time_s = t;
+  frame.pose = poseAt(t);
+  frame.light_gain = lightGainAt(t);
+  const double drift = config_.light_drift_duration_s > 0
+                           ? std::min(1.0, std::max(0.0, t / config_.light_drift_duration_s))
+                           : 0.0;
+  std::array<double, 3> cast;
+  for (int c = 0; c < 3; ++c) {
+    cast[c] = config_.light_cast_start_rgb[c] +
+              drift * (config_.light_cast_end_rgb[c] - config_.light_cast_start_rgb[c]);
+  }
+
+  const Eigen::Matrix3d base_from_optical =
+      opticalToBaseRotation(frame.pose.roll, frame.pose.pitch, frame.pose.yaw);
+  const Eigen::Matrix3d optical_from_base = base_from_optical.transpose();
+  const Eigen::Vector3d camera_position(frame.pose.x_m, frame.pose.y_m, frame.pose.height_m);
+
+  // Sky and ground, split exactly at the horizon: a pixel sees the sky when its ray points up.
+  frame.image.create(height, width, CV_8UC3);
+  frame.labels.create(height, width, CV_8UC1);
+  const cv::Scalar ground = litBgr(config_.ground_rgb, 1.0, frame.light_gain, cast);
+  const cv::Scalar sky = litBgr(config_.sky_rgb, 1.0, frame.light_gain, cast);
+  double a = 0, b = 0, c = 0;
+  const bool has_horizon = horizonFromUp(camera_, optical_from_base * Eigen::Vector3d::UnitZ(), &a, &b, &c);
+  if (has_horizon) {
+    frame.horizon = lineFromHomogeneous(a, b, c);
+    double x1, y1, x2, y2;
+    frame.horizon_visible = clipLineToImage(frame.horizon, width, height, &x1, &y1, &x2, &y2);
+  }
+  for (int v = 0; v < height; ++v) {
+    // Sky where a*u + (b*v + c) > 0: one interval [sky_begin, sky_end) per row.
+    const double offset = b * v + c;
+    int sky_begin = 0, sky_end = 0;
+    if (std::fabs(a) < 1e-15) {
+      sky_end = offset > 0 ? width : 0;
+    } else if (a > 0) {
+      sky_begin = static_cast<int>(std::max(0.0, std::min<double>(width, std::floor(-offset / a) + 1)));
+      sky_end = width;
+    } else {
+      sky_end = static_cast<int>(std::max(0.0, std::min<double>(width, std::ceil(-offset / a))));
+    }
+    cv::Mat image_row = frame.image.row(v);
+    cv::Mat label_row = frame.labels.row(v);
+    image_row.setTo(ground);
+    label_row.setTo(kGroundLabel);
+    if (sky_end > sky_begin) {
+      image_row.colRange(sky_begin, sky_end).setTo(sky);
+      label_row.colRange(sky_begin, sky_end).setTo(kSkyLabel);
+    }
+  }
+
+  // Boxes, far to near (painter's algorithm; boxes standing apart on a plane sort correctly).
+  std::vector<std::pair<double, size_t>> order;
+  for (size_t i = 0; i < config_.boxes.size(); ++i) {
+    const Eigen::Vector2d p = boxPositionAt(config_.boxes[i], t);
+    order.emplace_back(-(Eigen::Vector3d(p.x(), p.y(), 0.5 * config_.boxes[i].height_m) -
+                         camera_position).norm(), i);
+  }
+  std::sort(order.begin(), order.end());
+  const double guard = 4.0 * std::max(width, height);
+  for (const auto& entry : order) {
+    const SceneBox& box = config_.boxes[entry.second];
+    const uint8_t label = static_cast<uint8_t>(kFirstBoxLabel + entry.second);
+    const Eigen::Vector2d centre = boxPositionAt(box, t);
+    const Eigen::Matrix2d rot = Eigen::Rotation2Dd(box.yaw_deg * kDegToRad).toRotationMatrix();
+    const Eigen::Vector2d ax = rot.col(0) * (0.5 * box.depth_m);
+    const Eigen::Vector2d ay = rot.col(1) * (0.5 * box.width_m);
+    auto corner = [&](double sx, double sy, double z) {
+      const Eigen::Vector2d p = centre + sx * ax + sy * ay;
+      return Eigen::Vector3d(p.x(), p.y(), z);
+    };
+    const double h = box.height_m;
+    struct Face {
+      Eigen::Vector3d normal;
+      std::vector<Eigen::Vector3d> corners;
+    };
+    const Eigen::Vector3d nx(rot(0, 0), rot(1, 0), 0), ny(rot(0, 1), rot(1, 1), 0);
+    const Face faces[] = {
+        {Eigen::Vector3d::UnitZ(), {corner(-1, -1, h), corner(1, -1, h), corner(1, 1, h), corner(-1, 1, h)}},
+        {nx, {corner(1, -1, 0), corner(1, 1, 0), corner(1, 1, h), corner(1, -1, h)}},
+        {-nx, {corner(-1, -1, 0), corner(-1, 1, 0), corner(-1, 1, h), corner(-1, -1, h)}},
+        {ny, {corner(-1, 1, 0), corner(1, 1, 0), corner(1, 1, h), corner(-1, 1, h)}},
+        {-ny, {corner(-1, -1, 0), corner(1, -1, 0), corner(1, -1, h), corner(-1, -1, h)}},
+    };
+    for (const Face& face : faces) {
+      if ((camera_position - face.corners[0]).dot(face.normal) <= 0) continue;  // back face
+      std::vector<Eigen::Vector3d> in_camera;
+      for (const auto& p : face.corners) in_camera.push_back(optical_from_base * (p - camera_position));
+      in_camera = clipPolygon(in_camera, [](const Eigen::Vector3d& p) { return p.z() - kNearPlaneM; });
+      if (in_camera.size() < 3) continue;
+      std::vector<Eigen::Vector2d> projected;
+      for (const auto& p : in_camera) projected.push_back(camera_.project(p));
+      // Keep fixed-point vertices far from overflow: clip to a guard band around the image.
+      for (int axis = 0; axis < 2; ++axis) {
+        projected = clipPolygon(projected, [&](const Eigen::Vector2d& p) { return p[axis] + guard; });
+        projected = clipPolygon(projected, [&](const Eigen::Vector2d& p) { return guard - p[axis]; });
+      }
+      if (projected.size() < 3) continue;
+      std::vector<cv::Point> points;
+      for (const auto& p : projected) {
+        points.emplace_back(static_cast<int>(std::lround(p.x() * (1 << kSubPixelBits))),
+                            static_cast<int>(std::lround(p.y() * (1 << kSubPixelBits))));
+      }
+      const cv::Scalar colour = litBgr(box.rgb, faceShade(face.normal), frame.light_gain, cast);
+      cv::fillConvexPoly(frame.image, points, colour, cv::LINE_8, kSubPixelBits);
+      cv::fillConvexPoly(frame.labels, points, cv::Scalar(label), cv::LINE_8, kSubPixelBits);
+    }
+  }
+
+  // Ground truth from the label image: exactly the pixels each box covers.
+  struct Sums {
+    uint64_t area = 0, sx = 0, sy = 0;
+    int left = INT32_MAX, top = INT32_MAX, right = -1, bottom = -1;
+  };
+  std::vector<Sums> sums(config_.boxes.size());
+  for (int v = 0; v < height; ++v) {
+    const uint8_t* row = frame.labels.ptr<uint8_t>(v);
+    for (int u = 0; u < width; ++u) {
+      if (row[u] < kFirstBoxLabel) continue;
+      Sums& s = sums[row[u] - kFirstBoxLabel];
+      ++s.area;
+      s.sx += u;
+      s.sy += v;
+      s.left = std::min(s.left, u);
+      s.right = std::max(s.right, u);
+      s.top = std::min(s.top, v);
+      s.bottom = std::max(s.bottom, v);
+    }
+  }
+  for (size_t i = 0; i < config_.boxes.size(); ++i) {
+    const SceneBox& box = config_.boxes[i];
+    BoxTruth truth;
+    truth.name = box.name;
+    truth.color_class = box.color_class;
+    truth.label = static_cast<uint8_t>(kFirstBoxLabel + i);
+    truth.area = static_cast<uint32_t>(sums[i].area);
+    if (sums[i].area > 0) {
+      truth.cx = static_cast<double>(sums[i].sx) / sums[i].area;
+      truth.cy = static_cast<double>(sums[i].sy) / sums[i].area;
+      truth.left = sums[i].left;
+      truth.top = sums[i].top;
+      truth.right = sums[i].right;
+      truth.bottom = sums[i].bottom;
+    }
+    truth.position_m = boxPositionAt(box, t);
+    truth.width_m = box.width_m;
+    truth.depth_m = box.depth_m;
+    truth.height_m = box.height_m;
+    truth.yaw_rad = box.yaw_deg * kDegToRad;
+    frame.boxes.push_back(truth);
+  }
+
+  if (config_.blur_sigma_px > 0) {
+    cv::GaussianBlur(frame.image, frame.image, cv::Size(), config_.blur_sigma_px, config_.blur_sigma_px,
+                     cv::BORDER_REPLICATE);
+  }
+  if (config_.noise_sigma > 0) {
+    // One reproducible noise field per (seed, frame).
+    cv::RNG rng(config_.seed * 0x9E3779B97F4A7C15ull + frame_index + 1);
+    cv::Mat noise(height, width, CV_16SC3);
+    rng.fill(noise, cv::RNG::NORMAL, 0.0, config_.noise_sigma);
+    cv::Mat wide;
+    frame.image.convertTo(wide, CV_16SC3);
+    wide += noise;
+    wide.convertTo(frame.image, CV_8UC3);
+  }
+  return frame;
+}
+
+}  // namespace rle_vision

@@ -1,0 +1,129 @@
+// colors.yaml, CMVision colors.txt and scene files: good files load, broken ones fail loudly
+// with the file, the line and the reason.
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "rle_vision/config_files.h"
+#include "test_helpers.h"
+
+namespace rle_vision {
+namespace {
+
+using test::sourcePath;
+
+// The message of the ConfigError `f` throws ("" when it does not throw).
+template <typename F>
+std::string errorOf(F f) {
+  try {
+    f();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ColorConfig, ShippedColorsYamlLoads) {
+  const std::vector<ColorClass> classes = loadColorClasses(sourcePath("config/colors.yaml"));
+  ASSERT_EQ(classes.size(), 4u);
+  EXPECT_EQ(classes[0].name, "red");
+  EXPECT_EQ(classes[0].space, ColorSpace::YUV);
+  EXPECT_EQ(classes[0].min[2], 184);
+  EXPECT_EQ(classes[0].min_area_px, 30u);
+  EXPECT_EQ(classes[0].source, "config");
+}
+
+TEST(ColorConfig, YamlRoundTrips) {
+  std::vector<ColorClass> classes = loadColorClasses(sourcePath("config/colors.yaml"));
+  classes[1].space = ColorSpace::HSV;
+  classes[1].min[0] = 170;  // wrapped hue
+  classes[1].max[0] = 10;
+  const std::vector<ColorClass> back = parseColorClassesYaml(colorClassesToYaml(classes), "text");
+  ASSERT_EQ(back.size(), classes.size());
+  for (size_t i = 0; i < classes.size(); ++i) {
+    EXPECT_EQ(back[i].name, classes[i].name);
+    EXPECT_EQ(back[i].space, classes[i].space);
+    EXPECT_EQ(back[i].min, classes[i].min);
+    EXPECT_EQ(back[i].max, classes[i].max);
+    EXPECT_EQ(back[i].display_rgb, classes[i].display_rgb);
+    EXPECT_EQ(back[i].min_area_px, classes[i].min_area_px);
+  }
+}
+
+TEST(ColorConfig, BrokenYamlNamesFileLineAndReason) {
+  const std::string head = "classes:\n  - name: red\n";
+  EXPECT_EQ(errorOf([&] { parseColorClassesYaml(head + "    min: [0, 300, 1]\n    max: [1, 1, 1]\n", "c.yaml"); }),
+            "c.yaml:3: 'min' must be a list of 3 integers 0..255");
+  EXPECT_EQ(errorOf([&] { parseColorClassesYaml(head + "    min: [0, 1]\n    max: [1, 1, 1]\n", "c.yaml"); }),
+            "c.yaml:3: 'min' must be a list of 3 integers 0..255");
+  EXPECT_EQ(errorOf([&] { parseColorClassesYaml(head + "    min: [0, 0, 0]\n", "c.yaml"); }),
+            "c.yaml:2: class 'red' needs 'min' and 'max'");
+  EXPECT_NE(errorOf([&] { parseColorClassesYaml(head + "    mni: [0, 0, 0]\n", "c.yaml"); })
+                .find("c.yaml:3: unknown key 'mni'"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] {
+              parseColorClassesYaml(head + "    space: LAB\n    min: [0, 0, 0]\n    max: [1, 1, 1]\n", "c.yaml");
+            }).find("c.yaml:3: unknown colour space 'LAB'"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { parseColorClassesYaml("classes:\n  - name: [unclosed\n", "c.yaml"); })
+                .find("YAML syntax error"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] {
+              parseColorClassesYaml(head + "    min: [0, 0, 0]\n    max: [1, 1, 1]\n" + head.substr(9) +
+                                        "    min: [0, 0, 0]\n    max: [1, 1, 1]\n", "c.yaml");
+            }).find("'red' is used twice"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { parseColorClassesYaml(head + "    min: [0, 0, 0]\n    max: [1, 1, 1]\n    min_area_px: .nan\n", "c.yaml"); })
+                .find("c.yaml:5: 'min_area_px'"),
+            std::string::npos);
+  EXPECT_EQ(errorOf([] { loadColorClasses("/nonexistent/colors.yaml"); }),
+            "/nonexistent/colors.yaml: cannot open the file (check the path and permissions)");
+}
+
+TEST(ColorConfig, CmvisionClassicAndCommentedFilesLoad) {
+  const std::vector<ColorClass> classic = loadColorClasses(sourcePath("test/data/colors_classic.txt"));
+  ASSERT_EQ(classic.size(), 3u);
+  EXPECT_EQ(classic[0].name, "Ball");
+  EXPECT_EQ(classic[0].display_rgb, (Channels{{255, 128, 0}}));
+  EXPECT_EQ(classic[0].min, (Channels{{12, 99, 143}}));
+  EXPECT_EQ(classic[0].max, (Channels{{153, 127, 168}}));
+  EXPECT_EQ(classic[2].space, ColorSpace::YUV);
+  const std::vector<ColorClass> commented = loadColorClasses(sourcePath("test/data/colors_commented.txt"));
+  ASSERT_EQ(commented.size(), 2u);
+  EXPECT_EQ(commented[0].min, classic[0].min);
+  EXPECT_EQ(commented[1].name, "Yellow_Team");
+  EXPECT_EQ(commented[1].max, classic[1].max);
+}
+
+TEST(ColorConfig, BrokenCmvisionFilesNameTheLine) {
+  EXPECT_EQ(errorOf([] { parseCmvisionColors("[Colors]\n(255,0,0) 0.5 2 red\n(0,255,0) 0.5 2 green\n[Thresholds]\n(1:2,3:4,5:6)\n", "c.txt"); }),
+            "c.txt:3: colour 'green' has no line in [Thresholds]");
+  EXPECT_EQ(errorOf([] { parseCmvisionColors("[Colors]\n(255,0,0) 0.5 2 red\n[Thresholds]\n(1:2,3:4)\n", "c.txt"); }),
+            "c.txt:4: expected '(y0:y1,u0:u1,v0:v1)', got '(1:2,3:4)'");
+  EXPECT_EQ(errorOf([] { parseCmvisionColors("[Colors]\n(255,0,0) 0.5 2 red\n[Thresholds]\n(1:2,3:4,5:600)\n", "c.txt"); }),
+            "c.txt:4: value 600 is larger than 255");
+  EXPECT_EQ(errorOf([] { parseCmvisionColors("[Colors]\n(255,0,0) 0.5 2 red\n[Thresholds]\n(9:2,3:4,5:6)\n", "c.txt"); }),
+            "c.txt:4: range 9:2 has its low end above its high end");
+  EXPECT_EQ(errorOf([] { parseCmvisionColors("[Colors]\nred\n", "c.txt"); }),
+            "c.txt:2: expected '(r,g,b) merge expected name', got 'red'");
+}
+
+TEST(SceneConfig, ShippedSceneLoadsAndBrokenOnesFail) {
+  const SceneConfig scene = loadSceneConfig(sourcePath("config/scene_default.yaml"));
+  EXPECT_EQ(scene.width, 640);
+  EXPECT_EQ(scene.boxes.size(), 10u);
+  EXPECT_EQ(scene.boxes[2].name, "blue_1");
+  EXPECT_DOUBLE_EQ(scene.boxes[2].sway_period_s, 6.0);
+  EXPECT_EQ(errorOf([] { parseSceneConfig("camera: {height_m: -2}\n", "s.yaml"); }),
+            "s.yaml:1: 'height_m' = -2 is out of range [0.030000, 100.000000]");
+  EXPECT_NE(errorOf([] { parseSceneConfig("boxes:\n  - {name: a, hieght_m: 1}\n", "s.yaml"); })
+                .find("s.yaml:2: unknown key 'hieght_m'"),
+            std::string::npos);
+  EXPECT_NE(errorOf([] { parseSceneConfig("camera: {hfov_deg: .nan}\n", "s.yaml"); }).find("s.yaml:1: 'hfov_deg'"),
+            std::string::npos);
+  EXPECT_NE(errorOf([] { parseSceneConfig("boxes: 3\n", "s.yaml"); }).find("'boxes' must be a list"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace rle_vision

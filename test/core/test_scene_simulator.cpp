@@ -1,0 +1,147 @@
+// The scene simulator's ground truth is exact: horizon, masks, pose, lighting, noise.
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "rle_vision/config_files.h"
+#include "rle_vision/scene_simulator.h"
+#include "test_helpers.h"
+
+namespace rle_vision {
+namespace {
+
+SceneConfig defaultScene() { return loadSceneConfig(test::sourcePath("config/scene_default.yaml")); }
+
+TEST(SceneSimulator, SkyPixelsLieExactlyAboveTheHorizon) {
+  SceneConfig scene = defaultScene();
+  scene.boxes.clear();
+  scene.camera_roll_deg = 12;
+  const SceneSimulator simulator(scene);
+  for (int frame = 0; frame < 10; ++frame) {
+    const SimFrame f = simulator.render(frame, frame * 0.13);
+    ASSERT_TRUE(f.horizon_visible);
+    EXPECT_NEAR(normalizeLineAngle(f.horizon.theta + f.pose.roll), 0, 1e-9);
+    for (int y = 0; y < f.labels.rows; ++y) {
+      for (int x = 0; x < f.labels.cols; ++x) {
+        // The sky side is the negative side of the line's normal (-sin, cos) while |roll| < 90.
+        const double d = signedDistance(f.horizon, x, y);
+        const uint8_t label = f.labels.at<uint8_t>(y, x);
+        if (d < -1e-6) {
+          ASSERT_EQ(label, SceneSimulator::kSkyLabel) << x << "," << y;
+        } else if (d > 1e-6) {
+          ASSERT_EQ(label, SceneSimulator::kGroundLabel) << x << "," << y;
+        }
+      }
+    }
+  }
+}
+
+TEST(SceneSimulator, TruthMatchesTheLabelImage) {
+  const SceneSimulator simulator(defaultScene());
+  const SimFrame f = simulator.render(3, 0.1);
+  ASSERT_EQ(f.boxes.size(), 10u);
+  for (const BoxTruth& box : f.boxes) {
+    const cv::Mat mask = f.labels == box.label;
+    EXPECT_EQ(static_cast<uint32_t>(cv::countNonZero(mask)), box.area) << box.name;
+    if (box.area == 0) continue;
+    const cv::Moments m = cv::moments(mask, true);
+    EXPECT_NEAR(m.m10 / m.m00, box.cx, 1e-9);
+    EXPECT_NEAR(m.m01 / m.m00, box.cy, 1e-9);
+    const cv::Rect bbox = cv::boundingRect(mask);
+    EXPECT_EQ(bbox.x, box.left);
+    EXPECT_EQ(bbox.y, box.top);
+    EXPECT_EQ(bbox.x + bbox.width - 1, box.right);
+    EXPECT_EQ(bbox.y + bbox.height - 1, box.bottom);
+  }
+}
+
+TEST(SceneSimulator, BoxStraightAheadIsCentredAndNearerBoxesAreLower) {
+  SceneConfig scene = defaultScene();
+  scene.gait_roll_amplitude_deg = scene.gait_pitch_amplitude_deg = scene.gait_yaw_amplitude_deg = 0;
+  scene.gait_bob_amplitude_m = 0;
+  scene.boxes.resize(2);
+  scene.boxes[0] = SceneBox{"near", "red", {{210, 40, 40}}, 1.0, 0.0, 0.2, 0.2, 0.3, 0, 0, 0, 0, 0, 0};
+  scene.boxes[1] = SceneBox{"far", "red", {{210, 40, 40}}, 3.0, 0.0, 0.2, 0.2, 0.3, 0, 0, 0, 0, 0, 0};
+  const SceneSimulator simulator(scene);
+  const SimFrame f = simulator.render(0, 0);
+  const PinholeCamera& camera = simulator.camera();
+  for (const BoxTruth& box : f.boxes) {
+    // Mirror symmetric about the image centre column x = cx - 0.5 (pixel centres are integers).
+    EXPECT_NEAR(box.cx, camera.cx - 0.5, 0.51) << box.name;
+  }
+  EXPECT_GT(f.boxes[0].bottom, f.boxes[1].bottom);
+  EXPECT_GT(f.boxes[0].area, 4 * f.boxes[1].area);
+  // The near box's front bottom edge at x = 0.9 m projects where the pinhole model says.
+  const double depth = 0.9, drop = 0.45, pitch = 20 * M_PI / 180;
+  const double angle_below_axis = std::atan2(drop, depth) - pitch;
+  const double expected_v = camera.cy + camera.fy * std::tan(angle_below_axis);
+  EXPECT_NEAR(f.boxes[0].bottom, expected_v, 1.0);
+}
+
+TEST(SceneSimulator, SameFrameIsIdenticalAndSeedsDiffer) {
+  SceneConfig scene = defaultScene();
+  scene.noise_sigma = 4;
+  const SceneSimulator a(scene);
+  const SimFrame f1 = a.render(7, 0.2), f2 = a.render(7, 0.2), f3 = a.render(8, 0.2);
+  EXPECT_EQ(cv::norm(f1.image, f2.image, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(f1.image, f3.image, cv::NORM_INF), 0.0);
+  scene.seed += 1;
+  EXPECT_GT(cv::norm(f1.image, SceneSimulator(scene).render(7, 0.2).image, cv::NORM_INF), 0.0);
+}
+
+TEST(SceneSimulator, NoiseHasTheConfiguredSigma) {
+  SceneConfig scene = defaultScene();
+  scene.boxes.clear();
+  scene.blur_sigma_px = 0;
+  scene.noise_sigma = 5;
+  SceneConfig clean = scene;
+  clean.noise_sigma = 0;
+  cv::Mat noisy, flat;
+  SceneSimulator(scene).render(1, 0).image.convertTo(noisy, CV_32FC3);
+  SceneSimulator(clean).render(1, 0).image.convertTo(flat, CV_32FC3);
+  cv::Scalar mean, stddev;
+  cv::meanStdDev(noisy - flat, mean, stddev);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(stddev[c], 5.0, 0.15);
+    EXPECT_NEAR(mean[c], 0.0, 0.1);
+  }
+}
+
+TEST(SceneSimulator, GaitSwayAndLightingDrift) {
+  SceneConfig scene = defaultScene();
+  scene.light_gain_end = 0.55;
+  scene.light_drift_duration_s = 30;
+  const SceneSimulator simulator(scene);
+  EXPECT_NEAR(simulator.lightGainAt(0), 1.0, 1e-12);
+  EXPECT_NEAR(simulator.lightGainAt(15), 0.775, 1e-12);
+  EXPECT_NEAR(simulator.lightGainAt(60), 0.55, 1e-12);
+  const CameraPose quarter = simulator.poseAt(0.25);  // quarter stride at 1 Hz: peak roll
+  EXPECT_NEAR(quarter.roll, 3 * M_PI / 180, 1e-12);
+  EXPECT_NEAR(quarter.pitch, 20 * M_PI / 180, 1e-12);
+  const cv::Scalar early = cv::mean(simulator.render(0, 0).image);
+  const cv::Scalar late = cv::mean(simulator.render(900, 30).image);
+  EXPECT_NEAR(late[1] / early[1], 0.55, 0.02);
+}
+
+TEST(SceneSimulator, RejectsUnusableConfigurations) {
+  SceneConfig scene = defaultScene();
+  scene.camera_height_m = -1;
+  EXPECT_THROW(SceneSimulator{scene}, std::invalid_argument);
+  scene = defaultScene();
+  scene.hfov_deg = std::nan("");
+  EXPECT_THROW(SceneSimulator{scene}, std::invalid_argument);
+  scene = defaultScene();
+  scene.boxes[0].height_m = 0;
+  EXPECT_THROW(SceneSimulator{scene}, std::invalid_argument);
+}
+
+TEST(SceneSimulator, CameraInsideABoxDoesNotCrash) {
+  SceneConfig scene = defaultScene();
+  scene.boxes[0].x_m = 0;
+  scene.boxes[0].y_m = 0;
+  scene.boxes[0].height_m = 2;
+  const SimFrame f = SceneSimulator(scene).render(0, 0);
+  EXPECT_EQ(f.image.size(), cv::Size(640, 480));
+}
+
+}  // namespace
+}  // namespace rle_vision
