@@ -2,12 +2,17 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
 #include "rle_vision/color_table.h"
 #include "rle_vision/pixel_format.h"
+
+namespace rle_vision {
+struct YuvBoxes;
+}
 
 namespace rle_vision {
 
@@ -29,6 +34,11 @@ class PixelClassifier {
   // Fills the planes of every colour space `table` uses from a BGR/RGB row.
   void planesFromRgbRow(const uint8_t* src, int width, bool src_is_rgb, const ColorTable& table,
                         bool with_yuv);
+
+  // The fused AVX2 kernel's view of the current table (all classes YUV), rebuilt on change.
+  const YuvBoxes* yuvBoxesFor(const ColorTable& table);
+  std::shared_ptr<YuvBoxes> yuv_boxes_;
+  uint64_t yuv_boxes_serial_ = 0;
 
   int width_ = 0;
   std::vector<uint8_t> planes_[kNumColorSpaces][3];

@@ -17,6 +17,9 @@ class ColorTable {
   explicit ColorTable(std::vector<ColorClass> classes);
 
   const std::vector<ColorClass>& classes() const { return classes_; }
+  // Unique per constructed table in this process: lets caches tell tables apart even when a
+  // new table reuses a freed one's address.
+  uint64_t serial() const { return serial_; }
   int size() const { return static_cast<int>(classes_.size()); }
   // Index of the class with this name, or -1.
   int indexOf(const std::string& name) const;
@@ -41,6 +44,7 @@ class ColorTable {
 
  private:
   std::vector<ColorClass> classes_;
+  uint64_t serial_;
   uint32_t tables_[kNumColorSpaces][3][256];
   uint32_t space_bits_[kNumColorSpaces];
   uint32_t mono_[256];

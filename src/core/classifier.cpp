@@ -6,26 +6,51 @@
 
 #include "rle_vision/color_convert.h"
 #include "simd_dispatch.h"
+#include "yuv_classify_avx2.h"
 
 namespace rle_vision {
 namespace {
 
 // labels[x] = label where all three channels lie in their (possibly wrapped) ranges.
 // The unsigned modular compare needs no branch for wrapped ranges and vectorises well.
+// Bitwise & (not &&) and __restrict keep the loop branch-free so it vectorises.
 RLE_VISION_HOT
-void applyClassBox(const uint8_t* c0, const uint8_t* c1, const uint8_t* c2, int width,
-                   uint8_t lo0, uint8_t span0, uint8_t lo1, uint8_t span1, uint8_t lo2,
-                   uint8_t span2, uint8_t label, uint8_t* labels) {
+void applyClassBox(const uint8_t* __restrict c0, const uint8_t* __restrict c1,
+                   const uint8_t* __restrict c2, int width, uint8_t lo0, uint8_t span0, uint8_t lo1,
+                   uint8_t span1, uint8_t lo2, uint8_t span2, uint8_t label,
+                   uint8_t* __restrict labels) {
   for (int x = 0; x < width; ++x) {
-    const bool inside = static_cast<uint8_t>(c0[x] - lo0) <= span0 &&
-                        static_cast<uint8_t>(c1[x] - lo1) <= span1 &&
-                        static_cast<uint8_t>(c2[x] - lo2) <= span2;
+    const bool inside = (static_cast<uint8_t>(c0[x] - lo0) <= span0) &
+                        (static_cast<uint8_t>(c1[x] - lo1) <= span1) &
+                        (static_cast<uint8_t>(c2[x] - lo2) <= span2);
     labels[x] = inside ? label : labels[x];
   }
 }
 
 
 }  // namespace
+
+const YuvBoxes* PixelClassifier::yuvBoxesFor(const ColorTable& table) {
+  if (table.classesIn(ColorSpace::YUV) != (table.size() == 32 ? ~0u : (1u << table.size()) - 1)) {
+    return nullptr;  // some classes are in other spaces
+  }
+  if (!yuv_boxes_) yuv_boxes_ = std::make_shared<YuvBoxes>();
+  if (yuv_boxes_serial_ != table.serial()) {
+    YuvBoxes& boxes = *yuv_boxes_;
+    boxes.count = table.size();
+    for (int i = 0; i < boxes.count; ++i) {
+      const int k = boxes.count - 1 - i;  // lowest priority first: the first class wins
+      const ColorClass& c = table.classes()[k];
+      for (int ch = 0; ch < 3; ++ch) {
+        boxes.lo[i][ch] = c.min[ch];
+        boxes.span[i][ch] = static_cast<uint8_t>(c.max[ch] - c.min[ch]);
+      }
+      boxes.label[i] = static_cast<uint8_t>(k + 1);
+    }
+    yuv_boxes_serial_ = table.serial();
+  }
+  return yuv_boxes_.get();
+}
 
 void PixelClassifier::ensureWidth(int width) {
   if (width <= width_) return;
@@ -65,6 +90,12 @@ void PixelClassifier::classifyRow(const uint8_t* src, int width, PixelFormat for
     return;
   }
   if (format == PixelFormat::BGR8 || format == PixelFormat::RGB8) {
+    if (yuvClassifyAvx2Available()) {
+      if (const YuvBoxes* boxes = yuvBoxesFor(table)) {
+        classifyRowYuvAvx2(src, width, format == PixelFormat::RGB8, *boxes, labels);
+        return;
+      }
+    }
     planesFromRgbRow(src, width, format == PixelFormat::RGB8, table, /*with_yuv=*/true);
   } else {  // 4:2:2
     const bool is_uyvy = format == PixelFormat::UYVY;

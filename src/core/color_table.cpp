@@ -1,5 +1,6 @@
 #include "rle_vision/color_table.h"
 
+#include <atomic>
 #include <cstring>
 #include <stdexcept>
 
@@ -7,7 +8,12 @@
 
 namespace rle_vision {
 
-ColorTable::ColorTable(std::vector<ColorClass> classes) : classes_(std::move(classes)) {
+namespace {
+std::atomic<uint64_t> next_serial{1};
+}  // namespace
+
+ColorTable::ColorTable(std::vector<ColorClass> classes)
+    : classes_(std::move(classes)), serial_(next_serial.fetch_add(1)) {
   const std::string problem = validateColorClasses(classes_);
   if (!problem.empty()) throw std::invalid_argument(problem);
   std::memset(tables_, 0, sizeof(tables_));

@@ -106,6 +106,52 @@ TEST(PixelClassifier, AgreesWithBitTablesOnRandomImagesInEveryFormat) {
   }
 }
 
+// All-YUV tables take the fused AVX2 kernel where the CPU has it: check it on every colour.
+TEST(PixelClassifier, YuvOnlyTablesAgreeWithBitTablesOnAllColours) {
+  cv::Mat bgr(4096, 4096, CV_8UC3);
+  for (int i = 0; i < (1 << 24); ++i) {
+    uint8_t* p = bgr.ptr<uint8_t>() + 3 * i;
+    p[0] = i & 255;
+    p[1] = (i >> 8) & 255;
+    p[2] = (i >> 16) & 255;
+  }
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> byte(0, 255);
+  for (int count : {1, 4, 32}) {
+    std::vector<ColorClass> classes;
+    for (int k = 0; k < count; ++k) {
+      Channels lo, hi;
+      for (int ch = 0; ch < 3; ++ch) {
+        lo[ch] = static_cast<uint8_t>(byte(rng));
+        hi[ch] = static_cast<uint8_t>(byte(rng));
+        if (k % 4 != 0 && lo[ch] > hi[ch]) std::swap(lo[ch], hi[ch]);  // some wrap
+      }
+      classes.push_back(makeClass("c" + std::to_string(k), ColorSpace::YUV, lo, hi));
+    }
+    const ColorTable table(classes);
+    PixelClassifier classifier;
+    // Row widths 4096 (no tail) and, through a narrower view, 4093 (a 29-pixel scalar tail).
+    for (int width : {4096, 4093}) {
+      const cv::Mat view = bgr.colRange(0, width);
+      const cv::Mat labels = classifier.classify(view, PixelFormat::BGR8, table);
+      cv::Mat rgb;
+      cv::cvtColor(view, rgb, cv::COLOR_BGR2RGB);
+      const cv::Mat rgb_labels = classifier.classify(rgb, PixelFormat::RGB8, table);
+      long mismatches = 0;
+      for (int y = 0; y < view.rows; ++y) {
+        const uint8_t* p = view.ptr<uint8_t>(y);
+        const uint8_t* l = labels.ptr<uint8_t>(y);
+        const uint8_t* lr = rgb_labels.ptr<uint8_t>(y);
+        for (int x = 0; x < width; ++x) {
+          const int expected = firstClassLabel(table.mask(ColorSpace::YUV, yuvFromRgb(p[3 * x + 2], p[3 * x + 1], p[3 * x])));
+          mismatches += (l[x] != expected) + (lr[x] != expected);
+        }
+      }
+      EXPECT_EQ(mismatches, 0) << count << " classes, width " << width;
+    }
+  }
+}
+
 TEST(PixelClassifier, FirstListedClassWinsWhereClassesOverlap) {
   const ColorTable table({makeClass("wide", ColorSpace::RGB, {{100, 0, 0}}, {{255, 255, 255}}),
                           makeClass("narrow", ColorSpace::RGB, {{200, 0, 0}}, {{255, 50, 50}})});

@@ -1,0 +1,58 @@
+// A small, explicit timing harness: warm up, time N runs one at a time, report the median.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <sched.h>
+
+namespace rle_vision {
+namespace bench {
+
+// Runs `body` `warmup` times untimed, then `runs` times timed; returns the median in ms.
+template <typename Body>
+double medianMs(Body body, int runs = 400, int warmup = 30) {
+  for (int i = 0; i < warmup; ++i) body();
+  std::vector<double> ms(runs);
+  for (int i = 0; i < runs; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    body();
+    ms[i] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  std::nth_element(ms.begin(), ms.begin() + runs / 2, ms.end());
+  return ms[runs / 2];
+}
+
+// Keeps the compiler from dropping work whose result is unused.
+template <typename T>
+inline void keep(const T& value) {
+  asm volatile("" : : "g"(&value) : "memory");
+}
+
+// Pins the process to one CPU so one-thread figures are one-core figures.
+inline void pinToOneCpu() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  CPU_SET(0, &set);
+  sched_setaffinity(0, sizeof(set), &set);
+}
+
+// Writes a flat JSON object of numbers.
+inline void writeJson(const std::string& path, const std::vector<std::pair<std::string, double>>& values) {
+  std::ofstream out(path);
+  out << "{\n";
+  for (size_t i = 0; i < values.size(); ++i) {
+    char number[64];
+    std::snprintf(number, sizeof(number), "%.6g", values[i].second);
+    out << "  \"" << values[i].first << "\": " << number << (i + 1 < values.size() ? ",\n" : "\n");
+  }
+  out << "}\n";
+}
+
+}  // namespace bench
+}  // namespace rle_vision

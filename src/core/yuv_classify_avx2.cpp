@@ -1,0 +1,140 @@
+#include "yuv_classify_avx2.h"
+
+#include "rle_vision/color_convert.h"
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(RLE_VISION_NO_MULTIVERSION)
+#define RLE_VISION_HAVE_AVX2_KERNEL 1
+#include <immintrin.h>
+#endif
+
+namespace rle_vision {
+
+#ifdef RLE_VISION_HAVE_AVX2_KERNEL
+
+bool yuvClassifyAvx2Available() {
+  static const bool available = __builtin_cpu_supports("avx2");
+  return available;
+}
+
+namespace {
+
+#define RLE_VISION_AVX2 __attribute__((target("avx2")))
+
+// Y, U, V (int16, saturated to 0..255) of 16 pixels given as int16 r, g, b. Same fixed point
+// as OpenCV: y = (r*R2Y + g*G2Y + b*B2Y + round) >> 14, u = ((b - y)*B2U + round) >> 14 + 128.
+RLE_VISION_AVX2 inline void yuv16(__m256i r, __m256i g, __m256i b, __m256i* y, __m256i* u,
+                                  __m256i* v) {
+  using namespace yuv_fixed_point;
+  const __m256i one = _mm256_set1_epi16(1);
+  const __m256i c_rg = _mm256_set1_epi32((kG2Y << 16) | kR2Y);       // pairs (r, g)
+  const __m256i c_b1 = _mm256_set1_epi32((kRound << 16) | kB2Y);     // pairs (b, 1)
+  const __m256i c_u = _mm256_set1_epi32((kRound << 16) | kB2U);      // pairs (b - y, 1)
+  const __m256i c_v = _mm256_set1_epi32((kRound << 16) | kR2V);      // pairs (r - y, 1)
+  const __m256i y_lo = _mm256_srai_epi32(
+      _mm256_add_epi32(_mm256_madd_epi16(_mm256_unpacklo_epi16(r, g), c_rg),
+                       _mm256_madd_epi16(_mm256_unpacklo_epi16(b, one), c_b1)), kShift);
+  const __m256i y_hi = _mm256_srai_epi32(
+      _mm256_add_epi32(_mm256_madd_epi16(_mm256_unpackhi_epi16(r, g), c_rg),
+                       _mm256_madd_epi16(_mm256_unpackhi_epi16(b, one), c_b1)), kShift);
+  *y = _mm256_packs_epi32(y_lo, y_hi);  // unpack/pack are both per 128-bit lane: order kept
+  const __m256i by = _mm256_sub_epi16(b, *y);
+  const __m256i ry = _mm256_sub_epi16(r, *y);
+  const __m256i offset = _mm256_set1_epi16(128);
+  *u = _mm256_add_epi16(
+      _mm256_packs_epi32(_mm256_srai_epi32(_mm256_madd_epi16(_mm256_unpacklo_epi16(by, one), c_u), kShift),
+                         _mm256_srai_epi32(_mm256_madd_epi16(_mm256_unpackhi_epi16(by, one), c_u), kShift)),
+      offset);
+  *v = _mm256_add_epi16(
+      _mm256_packs_epi32(_mm256_srai_epi32(_mm256_madd_epi16(_mm256_unpacklo_epi16(ry, one), c_v), kShift),
+                         _mm256_srai_epi32(_mm256_madd_epi16(_mm256_unpackhi_epi16(ry, one), c_v), kShift)),
+      offset);
+}
+
+// Two groups of 16 int16 values (0..255 after saturation) to 32 bytes in pixel order.
+RLE_VISION_AVX2 inline __m256i packBytes(__m256i first16, __m256i second16) {
+  return _mm256_permute4x64_epi64(_mm256_packus_epi16(first16, second16), 0xD8);
+}
+
+// x in [lo, lo + span] (mod 256), per byte.
+RLE_VISION_AVX2 inline __m256i inBox(__m256i x, __m256i lo, __m256i span) {
+  const __m256i d = _mm256_sub_epi8(x, lo);
+  return _mm256_cmpeq_epi8(_mm256_min_epu8(d, span), d);
+}
+
+}  // namespace
+
+RLE_VISION_AVX2
+void classifyRowYuvAvx2(const uint8_t* src, int width, bool src_is_rgb, const YuvBoxes& boxes,
+                        uint8_t* labels) {
+  // pshufb masks gathering one channel of 16 pixels from three 16-byte blocks (-1: zero).
+  const __m256i first_a = _mm256_broadcastsi128_si256(_mm_setr_epi8(0, 3, 6, 9, 12, 15, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1));
+  const __m256i first_b = _mm256_broadcastsi128_si256(_mm_setr_epi8(-1, -1, -1, -1, -1, -1, 2, 5, 8, 11, 14, -1, -1, -1, -1, -1));
+  const __m256i first_c = _mm256_broadcastsi128_si256(_mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 1, 4, 7, 10, 13));
+  const __m256i mid_a = _mm256_broadcastsi128_si256(_mm_setr_epi8(1, 4, 7, 10, 13, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1));
+  const __m256i mid_b = _mm256_broadcastsi128_si256(_mm_setr_epi8(-1, -1, -1, -1, -1, 0, 3, 6, 9, 12, 15, -1, -1, -1, -1, -1));
+  const __m256i mid_c = _mm256_broadcastsi128_si256(_mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 2, 5, 8, 11, 14));
+  const __m256i last_a = _mm256_broadcastsi128_si256(_mm_setr_epi8(2, 5, 8, 11, 14, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1));
+  const __m256i last_b = _mm256_broadcastsi128_si256(_mm_setr_epi8(-1, -1, -1, -1, -1, 1, 4, 7, 10, 13, -1, -1, -1, -1, -1, -1));
+  const __m256i last_c = _mm256_broadcastsi128_si256(_mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 3, 6, 9, 12, 15));
+
+  int x = 0;
+  for (; x + 32 <= width; x += 32) {
+    const uint8_t* p = src + 3 * x;
+    // Lane 0 holds pixels x..x+15, lane 1 pixels x+16..x+31.
+    const __m256i a = _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))),
+                                              _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 48)), 1);
+    const __m256i b = _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 16))),
+                                              _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 64)), 1);
+    const __m256i c = _mm256_inserti128_si256(_mm256_castsi128_si256(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 32))),
+                                              _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 80)), 1);
+    const __m256i first = _mm256_or_si256(_mm256_or_si256(_mm256_shuffle_epi8(a, first_a), _mm256_shuffle_epi8(b, first_b)),
+                                          _mm256_shuffle_epi8(c, first_c));
+    const __m256i mid = _mm256_or_si256(_mm256_or_si256(_mm256_shuffle_epi8(a, mid_a), _mm256_shuffle_epi8(b, mid_b)),
+                                        _mm256_shuffle_epi8(c, mid_c));
+    const __m256i last = _mm256_or_si256(_mm256_or_si256(_mm256_shuffle_epi8(a, last_a), _mm256_shuffle_epi8(b, last_b)),
+                                         _mm256_shuffle_epi8(c, last_c));
+    const __m256i blue8 = src_is_rgb ? last : first;
+    const __m256i red8 = src_is_rgb ? first : last;
+    __m256i y0, u0, v0, y1, u1, v1;
+    yuv16(_mm256_cvtepu8_epi16(_mm256_castsi256_si128(red8)), _mm256_cvtepu8_epi16(_mm256_castsi256_si128(mid)),
+          _mm256_cvtepu8_epi16(_mm256_castsi256_si128(blue8)), &y0, &u0, &v0);
+    yuv16(_mm256_cvtepu8_epi16(_mm256_extracti128_si256(red8, 1)), _mm256_cvtepu8_epi16(_mm256_extracti128_si256(mid, 1)),
+          _mm256_cvtepu8_epi16(_mm256_extracti128_si256(blue8, 1)), &y1, &u1, &v1);
+    const __m256i y = packBytes(y0, y1);
+    const __m256i u = packBytes(u0, u1);
+    const __m256i v = packBytes(v0, v1);
+    __m256i label = _mm256_setzero_si256();
+    for (int k = 0; k < boxes.count; ++k) {
+      const __m256i inside = _mm256_and_si256(
+          _mm256_and_si256(inBox(y, _mm256_set1_epi8(static_cast<char>(boxes.lo[k][0])), _mm256_set1_epi8(static_cast<char>(boxes.span[k][0]))),
+                           inBox(u, _mm256_set1_epi8(static_cast<char>(boxes.lo[k][1])), _mm256_set1_epi8(static_cast<char>(boxes.span[k][1])))),
+          inBox(v, _mm256_set1_epi8(static_cast<char>(boxes.lo[k][2])), _mm256_set1_epi8(static_cast<char>(boxes.span[k][2]))));
+      label = _mm256_blendv_epi8(label, _mm256_set1_epi8(static_cast<char>(boxes.label[k])), inside);
+    }
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(labels + x), label);
+  }
+  // The last < 32 pixels, scalar.
+  const int r_index = src_is_rgb ? 0 : 2;
+  for (; x < width; ++x) {
+    const uint8_t* p = src + 3 * x;
+    const Channels yuv = yuvFromRgb(p[r_index], p[1], p[2 - r_index]);
+    uint8_t label = 0;
+    for (int k = 0; k < boxes.count; ++k) {
+      bool inside = true;
+      for (int ch = 0; ch < 3; ++ch) {
+        inside = inside && static_cast<uint8_t>(yuv[ch] - boxes.lo[k][ch]) <= boxes.span[k][ch];
+      }
+      if (inside) label = boxes.label[k];
+    }
+    labels[x] = label;
+  }
+}
+
+#else  // no AVX2 kernel on this platform
+
+bool yuvClassifyAvx2Available() { return false; }
+void classifyRowYuvAvx2(const uint8_t*, int, bool, const YuvBoxes&, uint8_t*) {}
+
+#endif
+
+}  // namespace rle_vision
