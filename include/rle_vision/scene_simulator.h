@@ -67,6 +67,9 @@ struct BoxTruth {
   uint32_t area = 0;  // visible pixels
   double cx = 0, cy = 0;
   int left = 0, top = 0, right = -1, bottom = -1;  // inclusive; right < left when not visible
+  int pieces = 0;  // 8-connected pieces of the visible mask (an occluder in front can split it)
+  bool touches_same_class = false;  // its mask touches a box of the same colour class
+  bool touches_other_box = false;   // its mask touches any other box (occluding or occluded)
   Eigen::Vector2d position_m{0, 0};  // footprint centre, base frame
   double width_m = 0, depth_m = 0, height_m = 0, yaw_rad = 0;
 };

@@ -273,6 +273,27 @@ SimFrame SceneSimulator::render(uint64_t frame_index, double t) const {
       truth.right = sums[i].right;
       truth.bottom = sums[i].bottom;
     }
+    if (sums[i].area > 0) {
+      // Within the bounding box (grown by one pixel to see neighbours): pieces of the mask,
+      // and whether a same-class box's pixels touch it (8-neighbourhood).
+      const cv::Rect roi = cv::Rect(truth.left - 1, truth.top - 1, truth.right - truth.left + 3,
+                                    truth.bottom - truth.top + 3) & cv::Rect(0, 0, width, height);
+      const cv::Mat labels_roi = frame.labels(roi);
+      const cv::Mat mask = labels_roi == truth.label;
+      cv::Mat components;
+      truth.pieces = cv::connectedComponents(mask, components, 8, CV_32S) - 1;
+      cv::Mat same_class = cv::Mat::zeros(roi.size(), CV_8UC1);
+      for (size_t j = 0; j < config_.boxes.size(); ++j) {
+        if (j != i && config_.boxes[j].color_class == box.color_class) {
+          same_class |= labels_roi == static_cast<uint8_t>(kFirstBoxLabel + j);
+        }
+      }
+      const cv::Mat other_box = (labels_roi >= kFirstBoxLabel) & (labels_roi != truth.label);
+      cv::Mat grown;
+      cv::dilate(mask, grown, cv::Mat());
+      truth.touches_same_class = cv::countNonZero(grown & same_class) > 0;
+      truth.touches_other_box = cv::countNonZero(grown & other_box) > 0;
+    }
     truth.position_m = boxPositionAt(box, t);
     truth.width_m = box.width_m;
     truth.depth_m = box.depth_m;

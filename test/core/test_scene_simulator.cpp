@@ -6,6 +6,8 @@
 #include "rle_vision/scene_simulator.h"
 #include "test_helpers.h"
 
+#include <algorithm>
+
 namespace rle_vision {
 namespace {
 
@@ -52,6 +54,30 @@ TEST(SceneSimulator, TruthMatchesTheLabelImage) {
     EXPECT_EQ(bbox.x + bbox.width - 1, box.right);
     EXPECT_EQ(bbox.y + bbox.height - 1, box.bottom);
   }
+}
+
+TEST(SceneSimulator, PiecesAndSameClassContactAgreeWithClassComponents) {
+  SceneConfig scene = defaultScene();
+  // Crowd the scene: boxes of one colour overlap and occlude each other.
+  for (size_t i = 0; i < scene.boxes.size(); ++i) {
+    scene.boxes[i].color_class = i % 2 ? "red" : "blue";
+    scene.boxes[i].y_m *= 0.4;
+  }
+  const ColorTable table({test::makeClass("red", ColorSpace::YUV, {{0, 0, 0}}, {{0, 0, 0}}),
+                          test::makeClass("blue", ColorSpace::YUV, {{0, 0, 0}}, {{0, 0, 0}})});
+  const SceneSimulator simulator(scene);
+  int merged = 0;
+  for (int frame = 0; frame < 60; frame += 6) {
+    const SimFrame f = simulator.render(frame, frame / 30.0);
+    const std::vector<BoxTruth> isolated = test::isolatedBoxes(f, table);
+    for (const BoxTruth& box : f.boxes) {
+      if (box.area == 0) continue;
+      const bool whole = std::any_of(isolated.begin(), isolated.end(), [&](const BoxTruth& b) { return b.name == box.name; });
+      EXPECT_EQ(whole, box.pieces == 1 && !box.touches_same_class) << box.name << " frame " << frame;
+      merged += box.touches_same_class;
+    }
+  }
+  EXPECT_GT(merged, 0) << "the crowded scene should make same-colour boxes touch";
 }
 
 TEST(SceneSimulator, BoxStraightAheadIsCentredAndNearerBoxesAreLower) {

@@ -1,0 +1,116 @@
+#include "conversions.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rle_vision {
+
+bool viewImage(const sensor_msgs::Image& msg, PixelFormat* format, cv::Mat* mat, std::string* error) {
+  if (!pixelFormatFromEncoding(msg.encoding, format)) {
+    *error = "unsupported image encoding '" + msg.encoding + "' (supported: " + supportedEncodings() +
+             "); convert it first, e.g. with image_proc for Bayer images";
+    return false;
+  }
+  if (msg.width == 0 || msg.height == 0) {
+    *error = "empty image (" + std::to_string(msg.width) + "x" + std::to_string(msg.height) + ")";
+    return false;
+  }
+  int type = CV_8UC3;
+  if (*format == PixelFormat::MONO8) type = CV_8UC1;
+  if (*format == PixelFormat::UYVY || *format == PixelFormat::YUYV) type = CV_8UC2;
+  const size_t row_bytes = static_cast<size_t>(msg.width) * CV_ELEM_SIZE(type);
+  if (msg.step < row_bytes) {
+    *error = "image step " + std::to_string(msg.step) + " is smaller than width x bytes per pixel (" +
+             std::to_string(row_bytes) + ")";
+    return false;
+  }
+  if (msg.data.size() < static_cast<size_t>(msg.step) * msg.height) {
+    *error = "image data has " + std::to_string(msg.data.size()) + " bytes, step x height needs " +
+             std::to_string(static_cast<size_t>(msg.step) * msg.height);
+    return false;
+  }
+  *mat = cv::Mat(static_cast<int>(msg.height), static_cast<int>(msg.width), type,
+                 const_cast<uint8_t*>(msg.data.data()), msg.step);
+  *error = checkImage(*mat, *format);
+  return error->empty();
+}
+
+bool colorClassesFromMsg(const ColorRangeArray& msg, std::vector<ColorClass>* classes, std::string* error) {
+  classes->clear();
+  for (const ColorRange& r : msg.ranges) {
+    ColorClass c;
+    c.name = r.name;
+    if (!parseColorSpace(r.space, &c.space)) {
+      *error = "colour range '" + r.name + "' has unknown space '" + r.space + "' (use YUV, RGB or HSV)";
+      return false;
+    }
+    for (int ch = 0; ch < 3; ++ch) {
+      c.min[ch] = r.min[ch];
+      c.max[ch] = r.max[ch];
+      c.display_rgb[ch] = r.display_rgb[ch];
+    }
+    c.min_area_px = std::max<uint32_t>(1, r.min_area);
+    c.source = r.source.empty() ? "config" : r.source;
+    classes->push_back(c);
+  }
+  *error = validateColorClasses(*classes);
+  return error->empty();
+}
+
+ColorRange colorRangeToMsg(const ColorClass& c) {
+  ColorRange r;
+  r.name = c.name;
+  r.space = toString(c.space);
+  for (int ch = 0; ch < 3; ++ch) {
+    r.min[ch] = c.min[ch];
+    r.max[ch] = c.max[ch];
+    r.display_rgb[ch] = c.display_rgb[ch];
+  }
+  r.min_area = c.min_area_px;
+  r.source = c.source;
+  return r;
+}
+
+Blob blobToMsg(const TrackedBlob& blob, const std::string& color_name) {
+  Blob b;
+  const Region& r = blob.region;
+  b.id = blob.id;
+  b.color = color_name;
+  b.area = r.area;
+  b.cx = static_cast<float>(r.cx);
+  b.cy = static_cast<float>(r.cy);
+  b.left = static_cast<uint32_t>(r.left);
+  b.top = static_cast<uint32_t>(r.top);
+  b.right = static_cast<uint32_t>(r.right);
+  b.bottom = static_cast<uint32_t>(r.bottom);
+  b.vx = static_cast<float>(blob.vx);
+  b.vy = static_cast<float>(blob.vy);
+  b.angle = static_cast<float>(r.angle);
+  b.age = blob.age;
+  return b;
+}
+
+Line lineToMsg(const ImageLine& line, double x1, double y1, double x2, double y2, uint32_t votes, uint32_t support) {
+  Line l;
+  l.theta = static_cast<float>(line.theta);
+  l.intercept = static_cast<float>(line.intercept);
+  l.x1 = static_cast<float>(x1);
+  l.y1 = static_cast<float>(y1);
+  l.x2 = static_cast<float>(x2);
+  l.y2 = static_cast<float>(y2);
+  l.votes = votes;
+  l.support = support;
+  return l;
+}
+
+bool cameraFromInfo(const sensor_msgs::CameraInfo& info, PinholeCamera* camera) {
+  camera->width = static_cast<int>(info.width);
+  camera->height = static_cast<int>(info.height);
+  camera->fx = info.K[0];
+  camera->fy = info.K[4];
+  camera->cx = info.K[2];
+  camera->cy = info.K[5];
+  return camera->valid();
+}
+
+}  // namespace rle_vision

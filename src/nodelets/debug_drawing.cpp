@@ -1,0 +1,77 @@
+#include "debug_drawing.h"
+
+#include <cv_bridge/cv_bridge.h>
+#include <opencv2/imgproc.hpp>
+
+namespace rle_vision {
+
+namespace {
+cv::Scalar displayBgr(const ColorClass& c) {
+  return cv::Scalar(c.display_rgb[2], c.display_rgb[1], c.display_rgb[0]);
+}
+
+// The colour at the centre of a class's box (wrapped ranges included), as BGR.
+cv::Scalar rangeCentreBgr(const ColorClass& c) {
+  cv::Mat pixel(1, 1, CV_8UC3);
+  for (int ch = 0; ch < 3; ++ch) {
+    const int span = static_cast<uint8_t>(c.max[ch] - c.min[ch]);
+    pixel.at<cv::Vec3b>(0, 0)[ch] = static_cast<uint8_t>((c.min[ch] + span / 2) % (c.space == ColorSpace::HSV && ch == 0 ? 180 : 256));
+  }
+  cv::Mat bgr;
+  switch (c.space) {
+    case ColorSpace::YUV: cv::cvtColor(pixel, bgr, cv::COLOR_YUV2BGR); break;
+    case ColorSpace::RGB: cv::cvtColor(pixel, bgr, cv::COLOR_RGB2BGR); break;
+    case ColorSpace::HSV: cv::cvtColor(pixel, bgr, cv::COLOR_HSV2BGR); break;
+  }
+  const cv::Vec3b v = bgr.at<cv::Vec3b>(0, 0);
+  return cv::Scalar(v[0], v[1], v[2]);
+}
+}  // namespace
+
+cv::Mat toDisplayBgr(const cv::Mat& image, PixelFormat format) {
+  cv::Mat bgr;
+  switch (format) {
+    case PixelFormat::BGR8: bgr = image.clone(); break;
+    case PixelFormat::RGB8: cv::cvtColor(image, bgr, cv::COLOR_RGB2BGR); break;
+    case PixelFormat::MONO8: cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR); break;
+    case PixelFormat::UYVY: cv::cvtColor(image, bgr, cv::COLOR_YUV2BGR_UYVY); break;
+    case PixelFormat::YUYV: cv::cvtColor(image, bgr, cv::COLOR_YUV2BGR_YUY2); break;
+  }
+  return bgr;
+}
+
+void drawBlobs(cv::Mat* canvas, const BlobArray& blobs, const ColorTable& table) {
+  for (const Blob& b : blobs.blobs) {
+    const int k = table.indexOf(b.color);
+    const cv::Scalar colour = k >= 0 ? displayBgr(table.classes()[k]) : cv::Scalar(255, 255, 255);
+    const cv::Rect box(cv::Point(b.left, b.top), cv::Point(b.right + 1, b.bottom + 1));
+    cv::rectangle(*canvas, box, colour, 2);
+    cv::drawMarker(*canvas, cv::Point(cvRound(b.cx), cvRound(b.cy)), colour, cv::MARKER_CROSS, 8, 1);
+    const std::string text = std::to_string(b.id) + " " + b.color;
+    cv::putText(*canvas, text, cv::Point(b.left, std::max(10, static_cast<int>(b.top) - 4)),
+                cv::FONT_HERSHEY_SIMPLEX, 0.4, colour, 1, cv::LINE_AA);
+  }
+}
+
+void drawColorSwatches(cv::Mat* canvas, const ColorTable& table) {
+  const int size = 18;
+  int x = 4;
+  const int y = canvas->rows - size - 4;
+  for (const ColorClass& c : table.classes()) {
+    // Left half: the class's display colour; right half: the colour its range is centred on
+    // (watch it follow the light as learned ranges arrive).
+    const cv::Rect swatch(x, y, size, size);
+    cv::rectangle(*canvas, cv::Rect(x, y, size / 2, size), displayBgr(c), cv::FILLED);
+    cv::rectangle(*canvas, cv::Rect(x + size / 2, y, size - size / 2, size), rangeCentreBgr(c), cv::FILLED);
+    cv::rectangle(*canvas, swatch, cv::Scalar(255, 255, 255), 1);
+    cv::putText(*canvas, c.name + (c.source == "learned" ? "*" : ""), cv::Point(x + size + 3, y + size - 5),
+                cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+    x += size + 8 + 8 * static_cast<int>(c.name.size() + 1);
+  }
+}
+
+sensor_msgs::ImagePtr debugImageMsg(const std_msgs::Header& header, const cv::Mat& bgr) {
+  return cv_bridge::CvImage(header, "bgr8", bgr).toImageMsg();
+}
+
+}  // namespace rle_vision

@@ -1,0 +1,199 @@
+// rle_vision/Tracker: the real-time RLE colour blob tracker. A thin wrapper around the core
+// Segmenter + BlobTracker: converts messages, holds the parameters, publishes blobs.
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <mutex>
+
+#include <dynamic_reconfigure/server.h>
+#include <image_transport/image_transport.h>
+#include <nodelet/nodelet.h>
+#include <opencv2/imgproc.hpp>
+#include <pluginlib/class_list_macros.hpp>
+#include <ros/package.h>
+#include <ros/ros.h>
+
+#include "conversions.h"
+#include "debug_drawing.h"
+#include "rle_vision/BlobArray.h"
+#include "rle_vision/ColorRangeArray.h"
+#include "rle_vision/TrackerConfig.h"
+#include "rle_vision/config_files.h"
+#include "rle_vision/segmenter.h"
+#include "rle_vision/shared_color_table.h"
+
+namespace rle_vision {
+
+class TrackerNodelet : public nodelet::Nodelet {
+ private:
+  void onInit() override;
+  void connectCb();
+  void imageCb(const sensor_msgs::ImageConstPtr& msg);
+  void colorRangesCb(const ColorRangeArrayConstPtr& msg);
+  void reconfigureCb(TrackerConfig& config, uint32_t level);
+  void publishActiveRanges(const ColorTable& table, const ros::Time& stamp);
+
+  std::shared_ptr<image_transport::ImageTransport> it_;
+  image_transport::Subscriber sub_image_;
+  ros::Subscriber sub_ranges_;
+  ros::Publisher pub_blobs_;
+  ros::Publisher pub_active_ranges_;
+  image_transport::Publisher pub_debug_;
+  std::mutex connect_mutex_;
+  int queue_size_ = 1;
+
+  // Parameters are copied under this mutex, then frames are processed without it.
+  std::mutex config_mutex_;
+  SegmenterOptions segmenter_options_;
+  TrackerOptions tracker_options_;
+  std::shared_ptr<dynamic_reconfigure::Server<TrackerConfig>> reconfigure_server_;
+
+  // Swapped by colorRangesCb while imageCb segments with its own snapshot.
+  SharedColorTable table_;
+  std::atomic<bool> warned_mono_{false};
+
+  // Used only by imageCb, which ROS calls serially.
+  Segmenter segmenter_;
+  BlobTracker tracker_;
+  std::vector<Region> regions_;
+  std::vector<TrackedBlob> blobs_;
+};
+
+void TrackerNodelet::onInit() {
+  ros::NodeHandle& nh = getNodeHandle();
+  ros::NodeHandle& pnh = getPrivateNodeHandle();
+  it_ = std::make_shared<image_transport::ImageTransport>(nh);
+  pnh.param("queue_size", queue_size_, 1);
+  queue_size_ = std::max(1, queue_size_);
+
+  std::string colors_file;
+  pnh.param<std::string>("colors_file", colors_file, ros::package::getPath("rle_vision") + "/config/colors.yaml");
+  try {
+    table_.store(std::make_shared<const ColorTable>(loadColorClasses(colors_file)));
+  } catch (const std::exception& e) {
+    // Fail loudly at start: without classes the tracker cannot do anything useful.
+    NODELET_FATAL("cannot load colour classes: %s. Set ~colors_file to a colors.yaml or CMVision colors.txt.", e.what());
+    throw;
+  }
+  NODELET_INFO("loaded %d colour classes from %s", table_.load()->size(), colors_file.c_str());
+
+  reconfigure_server_ = std::make_shared<dynamic_reconfigure::Server<TrackerConfig>>(pnh);
+  reconfigure_server_->setCallback([this](TrackerConfig& config, uint32_t level) { reconfigureCb(config, level); });
+
+  // Lazy: the image is only subscribed while someone listens to an output.
+  std::lock_guard<std::mutex> lock(connect_mutex_);
+  const ros::SubscriberStatusCallback connect_cb = [this](const ros::SingleSubscriberPublisher&) { connectCb(); };
+  const image_transport::SubscriberStatusCallback image_connect_cb =
+      [this](const image_transport::SingleSubscriberPublisher&) { connectCb(); };
+  pub_blobs_ = nh.advertise<BlobArray>("blobs", 10, connect_cb, connect_cb);
+  pub_debug_ = image_transport::ImageTransport(pnh).advertise("debug_image", 1, image_connect_cb, image_connect_cb);
+  pub_active_ranges_ = pnh.advertise<ColorRangeArray>("active_color_ranges", 1, /*latch=*/true);
+  sub_ranges_ = nh.subscribe("color_ranges", 1, &TrackerNodelet::colorRangesCb, this);
+  publishActiveRanges(*table_.load(), ros::Time::now());
+}
+
+void TrackerNodelet::connectCb() {
+  std::lock_guard<std::mutex> lock(connect_mutex_);
+  if (pub_blobs_.getNumSubscribers() == 0 && pub_debug_.getNumSubscribers() == 0) {
+    sub_image_.shutdown();
+  } else if (!sub_image_) {
+    sub_image_ = it_->subscribe("image_raw", static_cast<uint32_t>(queue_size_), &TrackerNodelet::imageCb, this);
+  }
+}
+
+void TrackerNodelet::reconfigureCb(TrackerConfig& config, uint32_t /*level*/) {
+  if (config.connectivity != 4 && config.connectivity != 8) {
+    NODELET_WARN("connectivity must be 4 or 8, got %d: using 8", config.connectivity);
+    config.connectivity = 8;
+  }
+  for (double* value : {&config.tracking_gate_px, &config.max_area_ratio, &config.velocity_smoothing}) {
+    if (!std::isfinite(*value)) {
+      NODELET_WARN("a tracker parameter is not a finite number: keeping the previous value");
+      std::lock_guard<std::mutex> lock(config_mutex_);
+      config.tracking_gate_px = tracker_options_.gate_px;
+      config.max_area_ratio = tracker_options_.max_area_ratio;
+      config.velocity_smoothing = tracker_options_.velocity_smoothing;
+      break;
+    }
+  }
+  std::lock_guard<std::mutex> lock(config_mutex_);
+  segmenter_options_.connectivity = config.connectivity == 4 ? Connectivity::Four : Connectivity::Eight;
+  segmenter_options_.min_area_px = static_cast<uint32_t>(std::max(1, config.min_area_px));
+  tracker_options_.gate_px = config.tracking_gate_px;
+  tracker_options_.max_area_ratio = config.max_area_ratio;
+  tracker_options_.max_missed_frames = config.max_missed_frames;
+  tracker_options_.velocity_smoothing = config.velocity_smoothing;
+}
+
+void TrackerNodelet::colorRangesCb(const ColorRangeArrayConstPtr& msg) {
+  std::vector<ColorClass> classes;
+  std::string error;
+  if (!colorClassesFromMsg(*msg, &classes, &error)) {
+    NODELET_ERROR_THROTTLE(5.0, "ignoring color_ranges: %s; keeping the current %d classes", error.c_str(),
+                           table_.load()->size());
+    return;
+  }
+  // Built here, off the frame path; imageCb picks it up with its next snapshot.
+  auto table = std::make_shared<const ColorTable>(std::move(classes));
+  table_.store(table);
+  warned_mono_ = false;
+  NODELET_DEBUG("swapped in %d colour classes from color_ranges", table->size());
+  publishActiveRanges(*table, msg->header.stamp);
+}
+
+void TrackerNodelet::publishActiveRanges(const ColorTable& table, const ros::Time& stamp) {
+  ColorRangeArray msg;
+  msg.header.stamp = stamp;
+  for (const ColorClass& c : table.classes()) msg.ranges.push_back(colorRangeToMsg(c));
+  pub_active_ranges_.publish(msg);
+}
+
+void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
+  const auto start = std::chrono::steady_clock::now();
+  PixelFormat format;
+  cv::Mat image;
+  std::string error;
+  if (!viewImage(*msg, &format, &image, &error)) {
+    NODELET_ERROR_THROTTLE(5.0, "dropping image on %s: %s", sub_image_.getTopic().c_str(), error.c_str());
+    return;
+  }
+  const std::shared_ptr<const ColorTable> table = table_.load();
+  if (format == PixelFormat::MONO8 && table->chromaClasses() != 0 && !warned_mono_.exchange(true)) {
+    NODELET_WARN("mono8 images carry no colour: the %d classes that constrain chroma are skipped "
+                 "(only classes with full U/V, H/S or equal R/G/B ranges apply)",
+                 __builtin_popcount(table->chromaClasses()));
+  }
+  {
+    std::lock_guard<std::mutex> lock(config_mutex_);
+    segmenter_.setOptions(segmenter_options_);
+    tracker_.setOptions(tracker_options_);
+  }
+  segmenter_.segment(image, format, *table, &regions_);
+  tracker_.update(regions_, msg->header.stamp.toSec(), &blobs_);
+  if (tracker_.lastUpdateRestarted()) {
+    NODELET_WARN("image time went backwards (a looped bag?): track ids start over");
+  }
+
+  auto out = boost::make_shared<BlobArray>();
+  out->header = msg->header;
+  out->image_width = msg->width;
+  out->image_height = msg->height;
+  out->blobs.reserve(blobs_.size());
+  for (const TrackedBlob& blob : blobs_) {
+    out->blobs.push_back(blobToMsg(blob, table->classes()[blob.region.label - 1].name));
+  }
+  out->processing_time_ms = static_cast<float>(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  pub_blobs_.publish(out);
+
+  if (pub_debug_.getNumSubscribers() > 0) {
+    cv::Mat canvas = toDisplayBgr(image, format);
+    drawBlobs(&canvas, *out, *table);
+    pub_debug_.publish(debugImageMsg(msg->header, canvas));
+  }
+}
+
+}  // namespace rle_vision
+
+PLUGINLIB_EXPORT_CLASS(rle_vision::TrackerNodelet, nodelet::Nodelet)

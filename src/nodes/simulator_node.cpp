@@ -1,0 +1,4 @@
+// The Simulator nodelet as a plain node.
+#include "nodelet_runner.h"
+
+int main(int argc, char** argv) { return rle_vision::runNodelet(argc, argv, "simulator", "rle_vision/Simulator"); }

@@ -1,0 +1,4 @@
+// The Tracker nodelet as a plain node.
+#include "nodelet_runner.h"
+
+int main(int argc, char** argv) { return rle_vision::runNodelet(argc, argv, "tracker", "rle_vision/Tracker"); }
