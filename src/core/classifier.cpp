@@ -99,6 +99,12 @@ void PixelClassifier::classifyRow(const uint8_t* src, int width, PixelFormat for
     planesFromRgbRow(src, width, format == PixelFormat::RGB8, table, /*with_yuv=*/true);
   } else {  // 4:2:2
     const bool is_uyvy = format == PixelFormat::UYVY;
+    if (yuvClassifyAvx2Available()) {
+      if (const YuvBoxes* boxes = yuvBoxesFor(table)) {
+        classifyRowYuv422Avx2(src, width, is_uyvy, *boxes, labels);
+        return;
+      }
+    }
     if (table.classesIn(ColorSpace::YUV)) {
       auto& p = planes_[static_cast<int>(ColorSpace::YUV)];
       yuv422RowToPlanes(src, width, is_uyvy, p[0].data(), p[1].data(), p[2].data());

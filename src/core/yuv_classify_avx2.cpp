@@ -61,7 +61,71 @@ RLE_VISION_AVX2 inline __m256i inBox(__m256i x, __m256i lo, __m256i span) {
   return _mm256_cmpeq_epi8(_mm256_min_epu8(d, span), d);
 }
 
+// Labels of 32 pixels from their Y, U, V bytes: later boxes overwrite earlier ones.
+RLE_VISION_AVX2 inline __m256i labelsOf(__m256i y, __m256i u, __m256i v, const YuvBoxes& boxes) {
+  __m256i label = _mm256_setzero_si256();
+  for (int k = 0; k < boxes.count; ++k) {
+    const __m256i inside = _mm256_and_si256(
+        _mm256_and_si256(inBox(y, _mm256_set1_epi8(static_cast<char>(boxes.lo[k][0])), _mm256_set1_epi8(static_cast<char>(boxes.span[k][0]))),
+                         inBox(u, _mm256_set1_epi8(static_cast<char>(boxes.lo[k][1])), _mm256_set1_epi8(static_cast<char>(boxes.span[k][1])))),
+        inBox(v, _mm256_set1_epi8(static_cast<char>(boxes.lo[k][2])), _mm256_set1_epi8(static_cast<char>(boxes.span[k][2]))));
+    label = _mm256_blendv_epi8(label, _mm256_set1_epi8(static_cast<char>(boxes.label[k])), inside);
+  }
+  return label;
+}
+
+// pshufb mask taking, from each 16-byte lane of 4:2:2 data (8 pixels), the byte at `offset`
+// of every pixel (Y: step 2) or of every pixel pair, repeated (chroma: step 4), into the low
+// or the high 8 bytes of the lane.
+RLE_VISION_AVX2 inline __m256i gatherMask(int offset, bool chroma, bool high) {
+  alignas(16) int8_t m[16];
+  for (int i = 0; i < 16; ++i) m[i] = -1;
+  for (int i = 0; i < 8; ++i) {
+    m[(high ? 8 : 0) + i] = static_cast<int8_t>(offset + (chroma ? 4 * (i / 2) : 2 * i));
+  }
+  return _mm256_broadcastsi128_si256(_mm_load_si128(reinterpret_cast<const __m128i*>(m)));
+}
+
+// Scalar label of one pixel (row tails).
+inline uint8_t labelOf(const Channels& yuv, const YuvBoxes& boxes) {
+  uint8_t label = 0;
+  for (int k = 0; k < boxes.count; ++k) {
+    bool inside = true;
+    for (int ch = 0; ch < 3; ++ch) {
+      inside = inside && static_cast<uint8_t>(yuv[ch] - boxes.lo[k][ch]) <= boxes.span[k][ch];
+    }
+    if (inside) label = boxes.label[k];
+  }
+  return label;
+}
+
 }  // namespace
+
+RLE_VISION_AVX2
+void classifyRowYuv422Avx2(const uint8_t* src, int width, bool is_uyvy, const YuvBoxes& boxes,
+                           uint8_t* labels) {
+  // Per 128-bit lane (8 pixels = 16 bytes): gather Y, and U and V repeated for each pixel of a
+  // pair, into the low 8 bytes (first load) or the high 8 bytes (second load).
+  const int yo = is_uyvy ? 1 : 0, uo = is_uyvy ? 0 : 1, vo = uo + 2;
+  const __m256i y_lo = gatherMask(yo, false, false), y_hi = gatherMask(yo, false, true);
+  const __m256i u_lo = gatherMask(uo, true, false), u_hi = gatherMask(uo, true, true);
+  const __m256i v_lo = gatherMask(vo, true, false), v_hi = gatherMask(vo, true, true);
+  int x = 0;
+  for (; x + 32 <= width; x += 32) {
+    // a: pixels x..x+15 (lanes: x..x+7 | x+8..x+15), b: pixels x+16..x+31.
+    const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + 2 * x));
+    const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + 2 * x + 32));
+    // Lanes now hold pixels (x..x+7, x+16..x+23 | x+8..x+15, x+24..x+31): reorder the quarters.
+    const __m256i y = _mm256_permute4x64_epi64(_mm256_or_si256(_mm256_shuffle_epi8(a, y_lo), _mm256_shuffle_epi8(b, y_hi)), 0xD8);
+    const __m256i u = _mm256_permute4x64_epi64(_mm256_or_si256(_mm256_shuffle_epi8(a, u_lo), _mm256_shuffle_epi8(b, u_hi)), 0xD8);
+    const __m256i v = _mm256_permute4x64_epi64(_mm256_or_si256(_mm256_shuffle_epi8(a, v_lo), _mm256_shuffle_epi8(b, v_hi)), 0xD8);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(labels + x), labelsOf(y, u, v, boxes));
+  }
+  for (; x < width; ++x) {
+    const uint8_t* pair = src + 4 * (x / 2);
+    labels[x] = labelOf(Channels{{pair[yo + 2 * (x % 2)], pair[uo], pair[vo]}}, boxes);
+  }
+}
 
 RLE_VISION_AVX2
 void classifyRowYuvAvx2(const uint8_t* src, int width, bool src_is_rgb, const YuvBoxes& boxes,
@@ -100,33 +164,14 @@ void classifyRowYuvAvx2(const uint8_t* src, int width, bool src_is_rgb, const Yu
           _mm256_cvtepu8_epi16(_mm256_castsi256_si128(blue8)), &y0, &u0, &v0);
     yuv16(_mm256_cvtepu8_epi16(_mm256_extracti128_si256(red8, 1)), _mm256_cvtepu8_epi16(_mm256_extracti128_si256(mid, 1)),
           _mm256_cvtepu8_epi16(_mm256_extracti128_si256(blue8, 1)), &y1, &u1, &v1);
-    const __m256i y = packBytes(y0, y1);
-    const __m256i u = packBytes(u0, u1);
-    const __m256i v = packBytes(v0, v1);
-    __m256i label = _mm256_setzero_si256();
-    for (int k = 0; k < boxes.count; ++k) {
-      const __m256i inside = _mm256_and_si256(
-          _mm256_and_si256(inBox(y, _mm256_set1_epi8(static_cast<char>(boxes.lo[k][0])), _mm256_set1_epi8(static_cast<char>(boxes.span[k][0]))),
-                           inBox(u, _mm256_set1_epi8(static_cast<char>(boxes.lo[k][1])), _mm256_set1_epi8(static_cast<char>(boxes.span[k][1])))),
-          inBox(v, _mm256_set1_epi8(static_cast<char>(boxes.lo[k][2])), _mm256_set1_epi8(static_cast<char>(boxes.span[k][2]))));
-      label = _mm256_blendv_epi8(label, _mm256_set1_epi8(static_cast<char>(boxes.label[k])), inside);
-    }
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(labels + x), label);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(labels + x),
+                        labelsOf(packBytes(y0, y1), packBytes(u0, u1), packBytes(v0, v1), boxes));
   }
   // The last < 32 pixels, scalar.
   const int r_index = src_is_rgb ? 0 : 2;
   for (; x < width; ++x) {
     const uint8_t* p = src + 3 * x;
-    const Channels yuv = yuvFromRgb(p[r_index], p[1], p[2 - r_index]);
-    uint8_t label = 0;
-    for (int k = 0; k < boxes.count; ++k) {
-      bool inside = true;
-      for (int ch = 0; ch < 3; ++ch) {
-        inside = inside && static_cast<uint8_t>(yuv[ch] - boxes.lo[k][ch]) <= boxes.span[k][ch];
-      }
-      if (inside) label = boxes.label[k];
-    }
-    labels[x] = label;
+    labels[x] = labelOf(yuvFromRgb(p[r_index], p[1], p[2 - r_index]), boxes);
   }
 }
 
@@ -134,6 +179,7 @@ void classifyRowYuvAvx2(const uint8_t* src, int width, bool src_is_rgb, const Yu
 
 bool yuvClassifyAvx2Available() { return false; }
 void classifyRowYuvAvx2(const uint8_t*, int, bool, const YuvBoxes&, uint8_t*) {}
+void classifyRowYuv422Avx2(const uint8_t*, int, bool, const YuvBoxes&, uint8_t*) {}
 
 #endif
 

@@ -23,4 +23,8 @@ bool yuvClassifyAvx2Available();
 void classifyRowYuvAvx2(const uint8_t* src, int width, bool src_is_rgb, const YuvBoxes& boxes,
                         uint8_t* labels);
 
+// The same for a 4:2:2 row (UYVY, or YUYV when !is_uyvy): each pixel pair shares its U and V.
+void classifyRowYuv422Avx2(const uint8_t* src, int width, bool is_uyvy, const YuvBoxes& boxes,
+                           uint8_t* labels);
+
 }  // namespace rle_vision

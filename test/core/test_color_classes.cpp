@@ -170,29 +170,32 @@ TEST(PixelClassifier, FirstListedClassWinsWhereClassesOverlap) {
 
 TEST(PixelClassifier, Yuv422UsesTheCamerasOwnYuv) {
   const ColorTable table({makeClass("a", ColorSpace::YUV, {{0, 100, 100}}, {{255, 140, 140}}),
-                          makeClass("b", ColorSpace::YUV, {{50, 0, 150}}, {{200, 120, 255}})});
-  cv::Mat uyvy(5, 64, CV_8UC2);
-  cv::RNG(5).fill(uyvy, cv::RNG::UNIFORM, 0, 256);
-  cv::Mat yuyv(uyvy.size(), CV_8UC2);
-  for (int y = 0; y < uyvy.rows; ++y) {
-    const uint8_t* s = uyvy.ptr<uint8_t>(y);
-    uint8_t* d = yuyv.ptr<uint8_t>(y);
-    for (int i = 0; i < uyvy.cols * 2; i += 2) {
-      d[i] = s[i + 1];
-      d[i + 1] = s[i];
-    }
-  }
+                          makeClass("b", ColorSpace::YUV, {{50, 0, 150}}, {{200, 120, 255}}),
+                          makeClass("w", ColorSpace::YUV, {{200, 250, 0}}, {{40, 10, 255}})});  // wrapped
   PixelClassifier classifier;
-  const cv::Mat from_uyvy = classifier.classify(uyvy, PixelFormat::UYVY, table);
-  const cv::Mat from_yuyv = classifier.classify(yuyv, PixelFormat::YUYV, table);
-  for (int y = 0; y < uyvy.rows; ++y) {
-    const uint8_t* p = uyvy.ptr<uint8_t>(y);
-    for (int x = 0; x < uyvy.cols; ++x) {
-      const int pair = x / 2;
-      const Channels yuv{{p[4 * pair + 1 + 2 * (x % 2)], p[4 * pair], p[4 * pair + 2]}};
-      const int expected = firstClassLabel(table.mask(ColorSpace::YUV, yuv));
-      ASSERT_EQ(from_uyvy.at<uint8_t>(y, x), expected);
-      ASSERT_EQ(from_yuyv.at<uint8_t>(y, x), expected);
+  for (int width : {64, 70, 2, 640}) {  // vector body only, with a scalar tail, tail only
+    cv::Mat uyvy(5, width, CV_8UC2);
+    cv::RNG(width).fill(uyvy, cv::RNG::UNIFORM, 0, 256);
+    cv::Mat yuyv(uyvy.size(), CV_8UC2);
+    for (int y = 0; y < uyvy.rows; ++y) {
+      const uint8_t* s = uyvy.ptr<uint8_t>(y);
+      uint8_t* d = yuyv.ptr<uint8_t>(y);
+      for (int i = 0; i < uyvy.cols * 2; i += 2) {
+        d[i] = s[i + 1];
+        d[i + 1] = s[i];
+      }
+    }
+    const cv::Mat from_uyvy = classifier.classify(uyvy, PixelFormat::UYVY, table);
+    const cv::Mat from_yuyv = classifier.classify(yuyv, PixelFormat::YUYV, table);
+    for (int y = 0; y < uyvy.rows; ++y) {
+      const uint8_t* p = uyvy.ptr<uint8_t>(y);
+      for (int x = 0; x < uyvy.cols; ++x) {
+        const int pair = x / 2;
+        const Channels yuv{{p[4 * pair + 1 + 2 * (x % 2)], p[4 * pair], p[4 * pair + 2]}};
+        const int expected = firstClassLabel(table.mask(ColorSpace::YUV, yuv));
+        ASSERT_EQ(from_uyvy.at<uint8_t>(y, x), expected) << "width " << width << " x " << x;
+        ASSERT_EQ(from_yuyv.at<uint8_t>(y, x), expected) << "width " << width << " x " << x;
+      }
     }
   }
 }

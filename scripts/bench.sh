@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Runs the benchmarks (one thread, against OpenCV and memcpy on the same frames) and writes
+# their JSON results to bench/results/.
+set -euo pipefail
+source "$(dirname "$0")/env.sh"
+cd "$WS" && catkin_make -j"${JOBS:-2}" rle_vision_bench_tracker >/dev/null
+mkdir -p "$ROOT/bench/results"
+"$WS/devel/lib/rle_vision/rle_vision_bench_tracker" "$ROOT" "$ROOT/bench/results/tracker.json"
