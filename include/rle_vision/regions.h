@@ -28,9 +28,11 @@ class RegionBuilder {
   // (share an edge with Four, an edge or a corner with Eight) on adjacent rows join one region.
   // On return each run's parent is its region's root run. Regions come in row-major order of
   // their first pixel. `min_area_by_label[label]` (if that index exists) drops smaller regions.
+  // With `join_labels`, touching runs join whatever their (non-zero) labels; a region then
+  // carries its first run's label.
   void build(std::vector<Run>* runs, const std::vector<int32_t>& row_starts,
              Connectivity connectivity, const std::vector<uint32_t>& min_area_by_label,
-             std::vector<Region>* regions);
+             std::vector<Region>* regions, bool join_labels = false);
 
  private:
   struct Moments {

@@ -74,12 +74,22 @@ struct BoxTruth {
   double width_m = 0, depth_m = 0, height_m = 0, yaw_rad = 0;
 };
 
+// A straight edge visible in the rendered image: a stretch of a box edge (silhouette or the
+// fold between two faces) or of the horizon with enough contrast across it, cut where it is
+// hidden or where the contrast fades.
+struct EdgeTruth {
+  double x1 = 0, y1 = 0, x2 = 0, y2 = 0;  // px
+  int box = -1;                           // box index, -1 for the horizon
+  double contrast = 0;                    // smallest max-channel colour step along it (8-bit units)
+};
+
 struct SimFrame {
   uint64_t frame_index = 0;
   double time_s = 0;
   cv::Mat image;   // CV_8UC3 BGR
   cv::Mat labels;  // CV_8UC1: kGroundLabel, kSkyLabel, or kFirstBoxLabel + box index
   std::vector<BoxTruth> boxes;
+  std::vector<EdgeTruth> edges;  // visible straight edges with contrast >= kMinEdgeContrast
   ImageLine horizon;
   bool horizon_visible = false;
   CameraPose pose;
@@ -91,6 +101,8 @@ class SceneSimulator {
   static constexpr uint8_t kGroundLabel = 0;
   static constexpr uint8_t kSkyLabel = 1;
   static constexpr uint8_t kFirstBoxLabel = 2;
+  // Colour step (largest channel difference, 8-bit units) that makes an edge count as visible.
+  static constexpr double kMinEdgeContrast = 30;
 
   // Throws std::invalid_argument when the configuration is unusable (the reason says why).
   explicit SceneSimulator(const SceneConfig& config);

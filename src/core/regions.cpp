@@ -23,7 +23,7 @@ inline int64_t sumOfSquares(int64_t n) { return n * (n + 1) * (2 * n + 1) / 6; }
 
 void RegionBuilder::build(std::vector<Run>* runs_ptr, const std::vector<int32_t>& row_starts,
                           Connectivity connectivity, const std::vector<uint32_t>& min_area_by_label,
-                          std::vector<Region>* regions) {
+                          std::vector<Region>* regions, bool join_labels) {
   std::vector<Run>& runs = *runs_ptr;
   regions->clear();
   const int32_t reach = connectivity == Connectivity::Eight ? 1 : 0;
@@ -36,7 +36,7 @@ void RegionBuilder::build(std::vector<Run>* runs_ptr, const std::vector<int32_t>
       // Runs above that end left of this one cannot touch it nor any run further right.
       while (above < above_end && runs[above].x1 + reach < run.x0) ++above;
       for (int32_t j = above; j < above_end && runs[j].x0 <= run.x1 + reach; ++j) {
-        if (runs[j].label == run.label) unite(runs, i, j);
+        if (join_labels || runs[j].label == run.label) unite(runs, i, j);
       }
     }
   }

@@ -46,6 +46,53 @@ cv::Scalar litBgr(const Channels& rgb, double shade, double gain, const std::arr
 
 bool finite(double v) { return std::isfinite(v); }
 
+// Largest channel difference between two BGR pixels.
+double colourStep(const cv::Vec3b& a, const cv::Vec3b& b) {
+  return std::max({std::abs(a[0] - b[0]), std::abs(a[1] - b[1]), std::abs(a[2] - b[2])});
+}
+
+// The visible stretches of the candidate segment (x1, y1) -> (x2, y2): sampled every pixel,
+// a sample is visible when one side (2 px along the normal) shows `label` (or, for label < 0,
+// when the two sides are sky and ground) and the colour step across is large enough.
+void visibleStretches(const cv::Mat& clean, const cv::Mat& labels, double x1, double y1, double x2,
+                      double y2, int label, int box, std::vector<EdgeTruth>* out) {
+  const double length = std::hypot(x2 - x1, y2 - y1);
+  if (length < 1) return;
+  const double ux = (x2 - x1) / length, uy = (y2 - y1) / length, nx = -uy, ny = ux;
+  const cv::Rect inside(0, 0, clean.cols, clean.rows);
+  const int steps = static_cast<int>(std::floor(length));
+  int start = -1;
+  double contrast = INFINITY;
+  auto close = [&](int end) {
+    if (start >= 0 && end - start >= 1) {
+      out->push_back({x1 + start * ux, y1 + start * uy, x1 + end * ux, y1 + end * uy, box, contrast});
+    }
+    start = -1;
+    contrast = INFINITY;
+  };
+  for (int s = 0; s <= steps; ++s) {
+    const double px = x1 + s * ux, py = y1 + s * uy;
+    const cv::Point a(cvRound(px + 2 * nx), cvRound(py + 2 * ny)), b(cvRound(px - 2 * nx), cvRound(py - 2 * ny));
+    bool visible = inside.contains(a) && inside.contains(b);
+    double step = 0;
+    if (visible) {
+      const int la = labels.at<uint8_t>(a), lb = labels.at<uint8_t>(b);
+      visible = label >= 0 ? (la == label || lb == label)
+                           : ((la == SceneSimulator::kSkyLabel && lb == SceneSimulator::kGroundLabel) ||
+                              (lb == SceneSimulator::kSkyLabel && la == SceneSimulator::kGroundLabel));
+      step = colourStep(clean.at<cv::Vec3b>(a), clean.at<cv::Vec3b>(b));
+      visible = visible && step >= SceneSimulator::kMinEdgeContrast;
+    }
+    if (visible) {
+      if (start < 0) start = s;
+      contrast = std::min(contrast, step);
+    } else {
+      close(s - 1);
+    }
+  }
+  close(steps);
+}
+
 }  // namespace
 
 std::string validateSceneConfig(const SceneConfig& c) {
@@ -189,6 +236,11 @@ SimFrame SceneSimulator::render(uint64_t frame_index, double t) const {
   }
   std::sort(order.begin(), order.end());
   const double guard = 4.0 * std::max(width, height);
+  struct CandidateEdge {
+    Eigen::Vector2d a, b;
+    int box;
+  };
+  std::vector<CandidateEdge> candidate_edges;
   for (const auto& entry : order) {
     const SceneBox& box = config_.boxes[entry.second];
     const uint8_t label = static_cast<uint8_t>(kFirstBoxLabel + entry.second);
@@ -235,7 +287,40 @@ SimFrame SceneSimulator::render(uint64_t frame_index, double t) const {
       const cv::Scalar colour = litBgr(box.rgb, faceShade(face.normal), frame.light_gain, cast);
       cv::fillConvexPoly(frame.image, points, colour, cv::LINE_8, kSubPixelBits);
       cv::fillConvexPoly(frame.labels, points, cv::Scalar(label), cv::LINE_8, kSubPixelBits);
+      for (size_t k = 0; k < projected.size(); ++k) {
+        candidate_edges.push_back({projected[k], projected[(k + 1) % projected.size()], static_cast<int>(entry.second)});
+      }
     }
+  }
+
+  // Straight-edge truth, from the clean image (before blur and noise). A fold shared by two
+  // faces is listed by both: keep it once.
+  for (size_t i = 0; i < candidate_edges.size(); ++i) {
+    const CandidateEdge& e = candidate_edges[i];
+    bool repeated = false;
+    for (size_t j = 0; j < i && !repeated; ++j) {
+      const CandidateEdge& f = candidate_edges[j];
+      repeated = f.box == e.box && (((f.a - e.a).norm() < 1e-6 && (f.b - e.b).norm() < 1e-6) ||
+                                    ((f.a - e.b).norm() < 1e-6 && (f.b - e.a).norm() < 1e-6));
+    }
+    if (repeated) continue;
+    double x1 = e.a.x(), y1 = e.a.y(), x2 = e.b.x(), y2 = e.b.y();
+    if (!clipLineToImage(lineThroughPoints(x1, y1, x2, y2), width, height, &x1, &y1, &x2, &y2)) continue;
+    // Clip the segment (not just its line) to the image.
+    const ImageLine l = lineThroughPoints(e.a.x(), e.a.y(), e.b.x(), e.b.y());
+    const double dx = std::cos(l.theta), dy = std::sin(l.theta);
+    const double ta = e.a.x() * dx + e.a.y() * dy, tb = e.b.x() * dx + e.b.y() * dy;
+    const double tc = x1 * dx + y1 * dy, td = x2 * dx + y2 * dy;
+    const double lo = std::max(std::min(ta, tb), std::min(tc, td)), hi = std::min(std::max(ta, tb), std::max(tc, td));
+    if (hi <= lo) continue;
+    const double ox = e.a.x() - ta * dx, oy = e.a.y() - ta * dy;  // line point at t = 0
+    visibleStretches(frame.image, frame.labels, ox + lo * dx, oy + lo * dy, ox + hi * dx, oy + hi * dy,
+                     kFirstBoxLabel + e.box, e.box, &frame.edges);
+  }
+  if (frame.horizon_visible) {
+    double x1, y1, x2, y2;
+    clipLineToImage(frame.horizon, width, height, &x1, &y1, &x2, &y2);
+    visibleStretches(frame.image, frame.labels, x1, y1, x2, y2, -1, -1, &frame.edges);
   }
 
   // Ground truth from the label image: exactly the pixels each box covers.

@@ -1,0 +1,140 @@
+// Landmark benchmark (issue 3): our 5x5 Sobel and RLE Hough + horizon against OpenCV on the
+// same 640x480 frames, one thread, in one run; line recall and precision of each against the
+// simulator's exact edges; the paper's sample-pair comparison (RLE per object vs global).
+#include <algorithm>
+#include <cstdio>
+
+#include <opencv2/imgproc.hpp>
+
+#include "benchmark_frame.h"
+#include "harness.h"
+#include "line_matching.h"
+#include "rle_vision/landmark_detector.h"
+
+using namespace rle_vision;
+
+namespace {
+
+constexpr int kFrames = 20;  // frames of the walking gait, one every 7 frames (0.23 s)
+
+// OpenCV's 5x5 Sobel doing our job: x and y derivatives of the 3 channels, the largest
+// channel magnitude, scaled like ours.
+void opencvSobel(const cv::Mat& bgr, double gain, cv::Mat* gx, cv::Mat* gy, cv::Mat* edges) {
+  cv::Sobel(bgr, *gx, CV_16S, 1, 0, 5);
+  cv::Sobel(bgr, *gy, CV_16S, 0, 1, 5);
+  cv::Mat fx, fy, magnitude;
+  gx->convertTo(fx, CV_32F);
+  gy->convertTo(fy, CV_32F);
+  cv::magnitude(fx.reshape(1), fy.reshape(1), magnitude);
+  magnitude = magnitude.reshape(3);
+  std::vector<cv::Mat> channels;
+  cv::split(magnitude, channels);
+  cv::Mat largest = cv::max(cv::max(channels[0], channels[1]), channels[2]);
+  largest.convertTo(*edges, CV_8U, gain / kSobel5StepGain);
+}
+
+struct LineOut {
+  ImageLine line;
+  double x1, y1, x2, y2;
+};
+
+std::vector<LineOut> toLines(const std::vector<cv::Vec4i>& segments) {
+  std::vector<LineOut> out;
+  for (const cv::Vec4i& s : segments) {
+    out.push_back({lineThroughPoints(s[0], s[1], s[2], s[3]), double(s[0]), double(s[1]), double(s[2]), double(s[3])});
+  }
+  return out;
+}
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string source_dir = argc > 1 ? argv[1] : RLE_VISION_SOURCE_DIR;
+  const std::string json_path = argc > 2 ? argv[2] : source_dir + "/bench/results/landmark.json";
+  bench::pinToOneCpu();
+  cv::setNumThreads(1);
+
+  const SceneSimulator simulator(loadSceneConfig(source_dir + "/config/scene_default.yaml"));
+  std::vector<SimFrame> frames;
+  for (int i = 0; i < kFrames; ++i) frames.push_back(simulator.render(7 * i, 7 * i / 30.0));
+
+  LandmarkOptions options;
+  LandmarkDetector detector;
+  Sobel5 sobel5;
+  LandmarkResult result;
+  std::vector<double> sobel_ms, opencv_sobel_ms, total_ms, hough_ms, houghp_ms, houghs_ms, horizon_err;
+  MatchScore ours, opencv;
+  uint64_t pairs_rle = 0, pairs_global = 0;
+  cv::Mat edges, cv_edges, gx, gy;
+  for (const SimFrame& frame : frames) {
+    sobel_ms.push_back(bench::medianMs([&] { sobel5.edges(frame.image, options.edge_gain, &edges); }, 30, 3));
+    opencv_sobel_ms.push_back(bench::medianMs([&] { opencvSobel(frame.image, options.edge_gain, &gx, &gy, &cv_edges); }, 10, 2));
+    // The whole landmark step, and the Hough + horizon step alone on the same edge image.
+    total_ms.push_back(bench::medianMs([&] { detector.detectInImage(frame.image, options, &result); }, 15, 2));
+    hough_ms.push_back(bench::medianMs([&] { detector.detectInEdges(edges, options, &result); }, 15, 2));
+    pairs_rle += result.hough.sample_pairs;
+    pairs_global += result.hough.global_sample_pairs;
+    // OpenCV's Hough on the same edge image, thresholded at our gray threshold.
+    cv::Mat binary = edges >= options.objects.gray_threshold;
+    std::vector<cv::Vec4i> segments;
+    houghp_ms.push_back(bench::medianMs([&] {
+      cv::HoughLinesP(binary, segments, 1, CV_PI / 180, 30, options.hough.min_line_length_px, options.hough.max_gap_px);
+    }, 5, 1));
+    std::vector<cv::Vec2f> standard;
+    houghs_ms.push_back(bench::medianMs([&] { cv::HoughLines(binary, standard, 1, CV_PI / 180, 60); }, 5, 1));
+
+    std::vector<Segment> truth, any_truth;
+    for (const EdgeTruth& e : frame.edges) {
+      const double length = std::hypot(e.x2 - e.x1, e.y2 - e.y1);
+      if (length >= options.hough.min_line_length_px) truth.push_back({e.x1, e.y1, e.x2, e.y2});
+      if (length >= 10) any_truth.push_back({e.x1, e.y1, e.x2, e.y2});
+    }
+    // Recall / precision within 2 deg and 2 px at the truth segment (the segments' own
+    // accuracy, without the intercept's extrapolation).
+    const MatchScore a = scoreSegments(result.lines, truth, any_truth, 2.0, 2.0);
+    const MatchScore b = scoreSegments(toLines(segments), truth, any_truth, 2.0, 2.0);
+    ours.truths += a.truths; ours.found += a.found; ours.detections += a.detections; ours.correct += a.correct;
+    opencv.truths += b.truths; opencv.found += b.found; opencv.detections += b.detections; opencv.correct += b.correct;
+    if (result.horizon.found && frame.horizon_visible) {
+      horizon_err.push_back(lineAngleDifference(result.horizon.line.theta, frame.horizon.theta) * 180 / M_PI);
+    }
+  }
+
+  const double sobel = median(sobel_ms), cv_sobel = median(opencv_sobel_ms), total = median(total_ms);
+  const double hough = median(hough_ms), houghp = median(houghp_ms), houghs = median(houghs_ms);
+  std::printf("rle_vision landmark benchmark: %d simulator frames 640x480 (config/scene_default.yaml, walking gait)\n", kFrames);
+  std::printf("medians over frames of per-frame medians, one thread pinned to one CPU\n");
+  std::printf("  %-46s %8.3f ms\n", "our 5x5 Sobel (3 channels, max magnitude)", sobel);
+  std::printf("  %-46s %8.3f ms   (ours %.1fx faster)\n", "OpenCV cv::Sobel ksize 5, same job", cv_sobel, cv_sobel / sobel);
+  std::printf("  %-46s %8.3f ms   (target <= 3)\n", "landmark total: Sobel + RLE Hough + horizon", total);
+  std::printf("  %-46s %8.3f ms\n", "RLE Hough + horizon on the edge image", hough);
+  std::printf("  %-46s %8.3f ms   (ours %.1fx faster)\n", "cv::HoughLinesP on the same edge image", houghp, houghp / hough);
+  std::printf("  %-46s %8.3f ms\n", "cv::HoughLines on the same edge image", houghs);
+  std::printf("  line recall / precision, ours:   %.3f / %.3f  (%d truth edges >= 30 px)\n", ours.recall(), ours.precision(), ours.truths);
+  std::printf("  line recall / precision, OpenCV: %.3f / %.3f\n", opencv.recall(), opencv.precision());
+  std::printf("  sample pairs per frame: RLE per object %.0f, global random Hough (eq. 4) %.0f\n",
+              double(pairs_rle) / kFrames, double(pairs_global) / kFrames);
+  std::printf("  horizon angle error, median: %.3f deg over %zu frames\n",
+              horizon_err.empty() ? -1.0 : median(horizon_err), horizon_err.size());
+  bench::writeJson(json_path, {{"sobel_ms", sobel},
+                               {"opencv_sobel_ms", cv_sobel},
+                               {"landmark_total_ms", total},
+                               {"hough_ms", hough},
+                               {"opencv_houghp_ms", houghp},
+                               {"opencv_hough_ms", houghs},
+                               {"speedup_vs_houghp", houghp / hough},
+                               {"recall", ours.recall()},
+                               {"precision", ours.precision()},
+                               {"opencv_recall", opencv.recall()},
+                               {"opencv_precision", opencv.precision()},
+                               {"sample_pairs_rle", double(pairs_rle) / kFrames},
+                               {"sample_pairs_global", double(pairs_global) / kFrames},
+                               {"horizon_err_deg_median", horizon_err.empty() ? -1.0 : median(horizon_err)}});
+  std::printf("wrote %s\n", json_path.c_str());
+  return 0;
+}

@@ -1,0 +1,61 @@
+// Run-length encoding of an edge image with the paper's two edge classes, and the connected
+// edge objects made of touching runs (of either class).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "rle_vision/regions.h"
+#include "rle_vision/run_length.h"
+
+namespace rle_vision {
+
+enum EdgeClass : uint8_t { kNoEdge = 0, kGrayEdge = 1, kSharpEdge = 2 };
+
+struct EdgeObjectOptions {
+  uint8_t gray_threshold = 60;    // edge values >= this (and below sharp) are the gray band
+  uint8_t sharp_threshold = 200;  // edge values >= this are sharp edges
+  uint32_t min_object_px = 20;    // smaller edge objects are noise
+  Connectivity connectivity = Connectivity::Eight;
+  bool thin = true;  // run-length encode only the ridge crests (see thinEdges)
+};
+
+struct EdgeObject {
+  int32_t first_run = 0;  // its runs are runs()[first_run, first_run + run_count)
+  int32_t run_count = 0;
+  uint32_t pixels = 0;
+  int left = 0, top = 0, right = 0, bottom = 0;
+  double cx = 0, cy = 0;  // centroid, px
+};
+
+// Thins an edge image to its crests: a pixel >= min_value is kept when it is a local maximum
+// (>= both neighbours) across the ridge, the direction (of four) where the magnitude curves
+// most; all other pixels become 0. A step edge keeps a crest 1-2 px wide.
+void thinEdges(const cv::Mat& edges, uint8_t min_value, cv::Mat* thin);
+
+// Holds its buffers; reuse one instance per thread.
+class EdgeObjectFinder {
+ public:
+  // `edges` is CV_8UC1 (e.g. Sobel5 output). Throws std::invalid_argument on other types.
+  void find(const cv::Mat& edges, const EdgeObjectOptions& options);
+
+  const std::vector<EdgeObject>& objects() const { return objects_; }
+  // Runs grouped by object (row-major within an object); labels are EdgeClass values.
+  const std::vector<Run>& runs() const { return object_runs_; }
+  uint64_t edgePixels() const { return edge_pixels_; }
+  uint64_t runCount() const { return runs_.size(); }
+
+ private:
+  std::vector<uint8_t> labels_;
+  cv::Mat thin_;
+  std::vector<Run> runs_, object_runs_;
+  std::vector<int32_t> row_starts_, object_of_root_, fill_;
+  std::vector<Region> regions_;
+  std::vector<EdgeObject> objects_;
+  RegionBuilder builder_;
+  uint64_t edge_pixels_ = 0;
+};
+
+}  // namespace rle_vision

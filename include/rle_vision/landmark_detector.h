@@ -1,0 +1,58 @@
+// The landmark pipeline of the paper's second half: 5x5 Sobel edges, RLE edge objects, the
+// per-object randomized Hough, and the horizon.
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "rle_vision/camera_model.h"
+#include "rle_vision/edge_objects.h"
+#include "rle_vision/horizon.h"
+#include "rle_vision/rle_hough.h"
+#include "rle_vision/sobel5.h"
+
+namespace rle_vision {
+
+struct LandmarkOptions {
+  double edge_gain = 2.0;  // Sobel scaling: a step of height h in one channel gives 2 h
+  EdgeObjectOptions objects;
+  HoughOptions hough;
+  HorizonOptions horizon;
+};
+
+// Reason the options are unusable (NaN, out of range), or "" when they are fine.
+std::string validateLandmarkOptions(const LandmarkOptions& options);
+
+struct LandmarkResult {
+  std::vector<DetectedLine> lines;
+  HorizonEstimate horizon;
+  HoughStats hough;
+  size_t edge_objects = 0;
+  uint64_t edge_pixels = 0, edge_runs = 0;
+  double sobel_ms = 0, objects_ms = 0, hough_ms = 0, horizon_ms = 0;  // time per stage
+};
+
+// Holds all buffers; reuse one instance per thread.
+class LandmarkDetector {
+ public:
+  // From a colour (CV_8UC3) or gray (CV_8UC1) image: runs the 5x5 Sobel first.
+  void detectInImage(const cv::Mat& image, const LandmarkOptions& options, LandmarkResult* result);
+  // From an edge image (CV_8UC1, e.g. the EdgeDetector's output).
+  void detectInEdges(const cv::Mat& edges, const LandmarkOptions& options, LandmarkResult* result);
+
+  const cv::Mat& edges() const { return edges_; }
+  const EdgeObjectFinder& edgeObjects() const { return finder_; }
+
+ private:
+  Sobel5 sobel_;
+  EdgeObjectFinder finder_;
+  RleHough hough_;
+  cv::Mat edges_;
+};
+
+// Camera roll and pitch from a horizon (REP 103). Without a camera model (nullptr or invalid)
+// the roll is -theta (square pixels assumed) and the pitch NaN.
+void horizonAttitude(const ImageLine& horizon, const PinholeCamera* camera, double* roll, double* pitch);
+
+}  // namespace rle_vision

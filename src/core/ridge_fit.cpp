@@ -1,0 +1,187 @@
+#include "rle_vision/ridge_fit.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rle_vision {
+namespace {
+
+// a x + b y + c = 0 with (a, b) the unit normal: distances without trigonometry per point.
+struct Normal {
+  double a, b, c;
+  explicit Normal(const ImageLine& line) { homogeneousFromLine(line, &a, &b, &c); }
+  double distance(double x, double y) const { return a * x + b * y + c; }
+};
+
+struct RidgePoint {
+  double x, y, t;
+};
+
+// Bilinear edge value at (x, y); 0 outside the image.
+inline double sample(const cv::Mat& edges, double x, double y) {
+  const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
+  if (x0 < 0 || y0 < 0 || x0 + 1 >= edges.cols || y0 + 1 >= edges.rows) return 0;
+  const double fx = x - x0, fy = y - y0;
+  const uint8_t* r0 = edges.ptr<uint8_t>(y0) + x0;
+  const uint8_t* r1 = edges.ptr<uint8_t>(y0 + 1) + x0;
+  return (1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) + fy * ((1 - fx) * r1[0] + fx * r1[1]);
+}
+
+// Ridge points: every pixel along the line, the edge profile perpendicular to it (half-pixel
+// steps, bilinear); its ridge is the stretch above half the edge threshold around the
+// maximum (a thin bar's two edges and the dip between are one ridge), its centre the centroid
+// of that stretch. Perpendicular profiles stay symmetric at end caps, unlike row or column
+// profiles of a slanted line.
+void ridgePoints(const cv::Mat& edges, const ImageLine& line, double t0, double t1,
+                 const RidgeFitOptions& o, std::vector<RidgePoint>* out) {
+  out->clear();
+  const double c = std::cos(line.theta), s = std::sin(line.theta);
+  const double nx = -s, ny = c;
+  double px, py;
+  pointOnLine(line, &px, &py);
+  const double t_origin = px * c + py * s;
+  constexpr double kStep = 0.5;
+  const int half = static_cast<int>(std::ceil(o.half_width_px / kStep));
+  thread_local std::vector<double> profile;
+  profile.resize(2 * half + 1);
+  const double floor = 0.5 * o.min_strength;
+  for (double t = std::ceil(t0); t <= t1; t += 1.0) {
+    const double bx = px + (t - t_origin) * c, by = py + (t - t_origin) * s;
+    int best = -1;
+    for (int k = -half; k <= half; ++k) {
+      profile[k + half] = sample(edges, bx + k * kStep * nx, by + k * kStep * ny);
+      // On a plateau keep the position nearest the line.
+      if (best < 0 || profile[k + half] > profile[best] ||
+          (profile[k + half] == profile[best] && std::abs(k) < std::abs(best - half))) {
+        best = k + half;
+      }
+    }
+    if (profile[best] < o.min_strength) continue;
+    int first = best, last = best;
+    while (first > 0 && profile[first - 1] >= floor) --first;
+    while (last < 2 * half && profile[last + 1] >= floor) ++last;
+    double weight = 0, moment = 0;
+    for (int k = first; k <= last; ++k) {
+      weight += profile[k];
+      moment += profile[k] * (k - half) * kStep;
+    }
+    const double offset = moment / weight;
+    out->push_back({bx + offset * nx, by + offset * ny, t});
+  }
+}
+
+bool fitPoints(const std::vector<RidgePoint>& points, size_t first, size_t last, ImageLine* line,
+               double* rms, PointSums* sums) {
+  PointSums s;
+  for (size_t i = first; i <= last; ++i) s.addPixel(points[i].x, points[i].y);
+  if (s.n < 3 || !s.fitLine(line, rms)) return false;
+  if (sums) *sums = s;
+  return true;
+}
+
+// Douglas-Peucker on ridge points[first..last] (inliers, ordered along the line): a stretch
+// that bends more than split_px away from its fitted line splits at the farthest point. The
+// deviation is median-filtered over 5 points, so a corner splits a stretch and a stray point
+// does not.
+void splitAndFit(const std::vector<RidgePoint>& points, size_t first, size_t last, const RidgeFitOptions& o,
+                 double min_length, int depth, std::vector<RidgeFit>* fits) {
+  if (last <= first + 2 || points[last].t - points[first].t < min_length) return;
+  RidgeFit fit;
+  if (!fitPoints(points, first, last, &fit.line, &fit.rms, &fit.sums)) return;
+  thread_local std::vector<double> deviation;
+  deviation.resize(last - first + 1);
+  const Normal normal(fit.line);
+  for (size_t i = first; i <= last; ++i) deviation[i - first] = std::fabs(normal.distance(points[i].x, points[i].y));
+  size_t farthest = first;
+  double largest = 0;
+  for (size_t i = first + 2; i + 2 <= last; ++i) {
+    double window[5];
+    for (int k = 0; k < 5; ++k) window[k] = deviation[i - first - 2 + k];
+    std::nth_element(window, window + 2, window + 5);
+    if (window[2] > largest) {
+      largest = window[2];
+      farthest = i;
+    }
+  }
+  if (largest > o.split_px && depth < 8) {
+    splitAndFit(points, first, farthest, o, min_length, depth + 1, fits);
+    splitAndFit(points, farthest, last, o, min_length, depth + 1, fits);
+    return;
+  }
+  // The final fit leaves out the ends, where a corner's other edge bends the ridge; the end
+  // points still come from the whole stretch.
+  const double trim = std::min(o.end_trim_px, 0.15 * (points[last].t - points[first].t));
+  size_t inner_first = first, inner_last = last;
+  while (inner_first < last && points[inner_first].t < points[first].t + trim) ++inner_first;
+  while (inner_last > first && points[inner_last].t > points[last].t - trim) --inner_last;
+  if (inner_last > inner_first + 2) fitPoints(points, inner_first, inner_last, &fit.line, &fit.rms, &fit.sums);
+  fit.points = static_cast<int>(last - first + 1);
+  // End points: the first and last ridge point projected on the fitted line.
+  const Normal final_normal(fit.line);
+  const double d1 = final_normal.distance(points[first].x, points[first].y);
+  const double d2 = final_normal.distance(points[last].x, points[last].y);
+  fit.x1 = points[first].x - d1 * final_normal.a;
+  fit.y1 = points[first].y - d1 * final_normal.b;
+  fit.x2 = points[last].x - d2 * final_normal.a;
+  fit.y2 = points[last].y - d2 * final_normal.b;
+  fits->push_back(fit);
+}
+
+void fitRobustly(std::vector<RidgePoint>* points, const ImageLine& start, const RidgeFitOptions& o,
+                 double min_length, std::vector<RidgeFit>* fits);
+
+}  // namespace
+
+void fitRidge(const cv::Mat& edges, const ImageLine& start, double t0, double t1, const RidgeFitOptions& o,
+              double min_length, std::vector<RidgeFit>* fits) {
+  thread_local std::vector<RidgePoint> points;
+  ridgePoints(edges, start, t0, t1, o, &points);
+  fitRobustly(&points, start, o, min_length, fits);
+}
+
+namespace {
+
+void fitRobustly(std::vector<RidgePoint>* points_ptr, const ImageLine& start, const RidgeFitOptions& o,
+                 double min_length, std::vector<RidgeFit>* fits) {
+  fits->clear();
+  const std::vector<RidgePoint>& points = *points_ptr;
+  // Scratch reused across calls (one set per thread).
+  thread_local std::vector<RidgePoint> inliers;
+  thread_local std::vector<double> residuals, sorted;
+  if (points.size() < 3) return;
+  // A robust line through all ridge points: fit, keep the points within a cut that shrinks to
+  // three times the median residual (ignoring neighbouring ridges near corners), fit again.
+  ImageLine line = start;
+  residuals.resize(points.size());
+  double cut = 2 * o.inlier_px;
+  for (int round = 0; round < 3; ++round) {
+    const Normal normal(line);
+    for (size_t i = 0; i < points.size(); ++i) residuals[i] = std::fabs(normal.distance(points[i].x, points[i].y));
+    sorted = residuals;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    cut = std::min(round == 0 ? 2 * o.inlier_px : o.inlier_px, std::max(0.5, 3.0 * 1.4826 * sorted[sorted.size() / 2]));
+    PointSums kept;
+    for (size_t i = 0; i < points.size(); ++i) {
+      if (residuals[i] <= cut) kept.addPixel(points[i].x, points[i].y);
+    }
+    double rms = 0;
+    if (kept.n < 3 || !kept.fitLine(&line, &rms)) return;
+  }
+  // Stretches of inliers (within the final cut of that line; outliers are skipped) whose
+  // consecutive points are at most max_gap apart; each is split where it bends, and fitted.
+  inliers.clear();
+  const Normal normal(line);
+  for (const RidgePoint& p : points) {
+    if (std::fabs(normal.distance(p.x, p.y)) <= cut) inliers.push_back(p);
+  }
+  size_t first = 0;
+  for (size_t i = 1; i <= inliers.size(); ++i) {
+    if (i < inliers.size() && inliers[i].t - inliers[i - 1].t <= o.max_gap_px) continue;
+    if (!inliers.empty()) splitAndFit(inliers, first, i - 1, o, min_length, 0, fits);
+    first = i;
+  }
+}
+
+}  // namespace
+
+}  // namespace rle_vision

@@ -1,0 +1,517 @@
+#include "rle_vision/rle_hough.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "rle_vision/ridge_fit.h"
+
+namespace rle_vision {
+namespace {
+
+constexpr double kDeg = M_PI / 180;
+constexpr uint32_t kEmpty = 0xFFFFFFFFu;
+// Cells whose lines cross a found segment at up to this angle are its own noisy votes.
+constexpr double kExplainedTiltDeg = 20;
+// Peaks come strongest first: once this many in a row lead nowhere, the rest are chance
+// alignments of pixels from different edges.
+constexpr int kMaxConsecutiveFailures = 4;
+
+struct Homogeneous {
+  double a, b, c;  // a x + b y + c = 0, (a, b) = (-sin theta, cos theta)
+};
+
+Homogeneous homogeneous(const ImageLine& line) {
+  Homogeneous h;
+  homogeneousFromLine(line, &h.a, &h.b, &h.c);
+  return h;
+}
+
+// Position along the line of pixel (x, y): the direction is (cos theta, sin theta) = (b, -a).
+inline double along(const Homogeneous& h, double x, double y) { return h.b * x - h.a * y; }
+inline double distance(const Homogeneous& h, double x, double y) { return h.a * x + h.b * y + h.c; }
+
+// atan2(y, x) in degrees for x >= 0, within 0.01 deg (a bin is 1 deg): a rational
+// approximation of atan on [0, 1] and the octant symmetries.
+inline double fastAtan2Deg(double y, double x) {
+  const double ay = std::fabs(y);
+  if (x == 0 && ay == 0) return 0;
+  const bool steep = ay > x;
+  const double r = steep ? x / ay : ay / x;  // in [0, 1]
+  // atan(r) ~ r (pi/4 + 0.273 (1 - r)), max error 0.0038 rad; refine with one Newton-like
+  // correction of the classic form for 0.01 deg accuracy.
+  const double a = r * (0.9998660 + r * r * (-0.3302995 + r * r * (0.1801410 + r * r * (-0.0851330 + r * r * 0.0208351))));
+  double deg = a * (180.0 / M_PI);
+  if (steep) deg = 90.0 - deg;
+  return y < 0 ? -deg : deg;
+}
+
+struct Interval {
+  double t0, t1;
+  double pixels;       // all pixels
+  double free_pixels;  // pixels no line has claimed
+};
+
+// Stretches of the line whose pixels follow each other with gaps up to max_gap.
+std::vector<Interval> pieces(std::vector<Interval>* intervals, double max_gap) {
+  std::sort(intervals->begin(), intervals->end(), [](const Interval& a, const Interval& b) { return a.t0 < b.t0; });
+  std::vector<Interval> out;
+  for (const Interval& i : *intervals) {
+    if (!out.empty() && i.t0 - out.back().t1 <= max_gap) {
+      out.back().t1 = std::max(out.back().t1, i.t1);
+      out.back().pixels += i.pixels;
+      out.back().free_pixels += i.free_pixels;
+    } else {
+      out.push_back(i);
+    }
+  }
+  return out;
+}
+
+Interval mostPixels(const std::vector<Interval>& list) {
+  Interval best{0, 0, 0, 0};
+  for (const Interval& i : list) {
+    if (i.pixels > best.pixels) best = i;
+  }
+  return best;
+}
+
+}  // namespace
+
+// An edge object's runs with an index by row, so that a line's band only visits the rows it
+// can reach, and the pixels lines found so far have claimed.
+struct ObjectRuns {
+  const Run* runs;
+  const int32_t* row_first;  // runs of row top + k are [row_first[k], row_first[k + 1])
+  int top, bottom, left, right;
+  uint8_t* claimed;          // per pixel of the bounding box
+
+  int stride() const { return right - left + 1; }
+  bool isClaimed(int x, int y) const { return claimed[(y - top) * stride() + (x - left)] != 0; }
+
+  // Indices [*first, *last) of the runs whose rows the band of `distance` around the line
+  // crosses inside the object's bounding box.
+  void rowsOfBand(const Homogeneous& h, double distance, int* first, int* last) const {
+    int y0 = top, y1 = bottom;
+    if (std::fabs(h.b) > 1e-3) {  // y = -(a x + c) / b, widened by distance / |b|
+      const double ya = -(h.a * (left - 1) + h.c) / h.b, yb = -(h.a * (right + 1) + h.c) / h.b;
+      const double reach = distance / std::fabs(h.b);
+      y0 = std::max(y0, static_cast<int>(std::floor(std::min(ya, yb) - reach)));
+      y1 = std::min(y1, static_cast<int>(std::ceil(std::max(ya, yb) + reach)));
+    }
+    if (y0 > y1) {
+      *first = *last = 0;
+      return;
+    }
+    *first = row_first[y0 - top];
+    *last = row_first[y1 - top + 1];
+  }
+};
+
+namespace {
+
+// The object's pixels within `band` of the line and, when `t_range` is given, with a position
+// along the line in [t_lo, t_hi]: the sums of those no line has claimed yet, their intervals
+// along the line (counting all and unclaimed pixels); `claim` then marks them claimed.
+void collect(const ObjectRuns& object, const Homogeneous& h, double band, const double* t_range,
+             PointSums* sums, std::vector<Interval>* intervals, bool claim = false) {
+  int first = 0, last = 0;
+  object.rowsOfBand(h, band, &first, &last);
+  // Pixels x of row y with |a x + b y + c| <= band: x in [(-band - o) / a, (band - o) / a].
+  const bool level = std::fabs(h.a) < 1e-12;
+  const double inv_a = level ? 0.0 : 1.0 / h.a;
+  for (int i = first; i < last; ++i) {
+    const Run& run = object.runs[i];
+    const double offset = h.b * run.y + h.c;
+    int lo = run.x0, hi = run.x1;
+    if (level) {
+      if (std::fabs(offset) > band) continue;
+    } else {
+      double e0 = (-band - offset) * inv_a, e1 = (band - offset) * inv_a;
+      if (e0 > e1) std::swap(e0, e1);
+      lo = std::max(lo, static_cast<int>(std::ceil(e0 - 1e-9)));
+      hi = std::min(hi, static_cast<int>(std::floor(e1 + 1e-9)));
+      if (lo > hi) continue;
+    }
+    if (t_range) {
+      // t = b x - a y is linear in x along the run.
+      if (std::fabs(h.b) < 1e-12) {
+        const double t = -h.a * run.y;
+        if (t < t_range[0] || t > t_range[1]) continue;
+      } else {
+        double e0 = (t_range[0] + h.a * run.y) / h.b, e1 = (t_range[1] + h.a * run.y) / h.b;
+        if (e0 > e1) std::swap(e0, e1);
+        lo = std::max(lo, static_cast<int>(std::ceil(e0 - 1e-9)));
+        hi = std::min(hi, static_cast<int>(std::floor(e1 + 1e-9)));
+        if (lo > hi) continue;
+      }
+    }
+    uint8_t* row = object.claimed + (run.y - object.top) * object.stride() - object.left;
+    int free = 0;
+    for (int x = lo; x <= hi; ++x) {
+      if (!row[x]) {
+        ++free;
+        if (sums) sums->addPixel(x, run.y);
+      }
+      if (claim) row[x] = 1;
+    }
+    if (intervals) {
+      double t0 = along(h, lo, run.y), t1 = along(h, hi, run.y);
+      if (t0 > t1) std::swap(t0, t1);
+      intervals->push_back({t0, t1, static_cast<double>(hi - lo + 1), static_cast<double>(free)});
+    }
+  }
+}
+
+}  // namespace
+
+uint64_t RleHough::samplesFor(double object_pixels, const HoughOptions& o) {
+  // eq. 2-4: p_i = n_i / p, p_ii = p_i^2, S = n / p_ii, for the shortest line wanted.
+  const double line_pixels = std::min(object_pixels, o.min_line_length_px * o.edge_width_px);
+  if (line_pixels <= 0) return 0;
+  const double p_i = line_pixels / object_pixels;
+  return static_cast<uint64_t>(std::ceil(o.sampling_margin * o.min_votes / (p_i * p_i)));
+}
+
+void RleHough::refine(const ObjectRuns& runs, const ImageLine& seed, const HoughOptions& o,
+                      const cv::Mat* edge_image, double ridge_strength, std::vector<DetectedLine>* out) const {
+  // A least-squares fit on the unclaimed pixels near the seed (a coarse cell): a wide band,
+  // then the fitting band, which also maps the stretches of pixels along the line.
+  ImageLine line = seed;
+  PointSums sums;
+  double rms = 0;
+  collect(runs, homogeneous(line), 2 * o.fit_distance_px, nullptr, &sums, nullptr);
+  if (sums.n < 0.5 * o.min_line_length_px || !sums.fitLine(&line, &rms)) return;
+  sums = PointSums();
+  std::vector<Interval> intervals;
+  collect(runs, homogeneous(line), o.fit_distance_px, nullptr, &sums, &intervals);
+  if (sums.n < 0.5 * o.min_line_length_px || !sums.fitLine(&line, &rms)) return;
+
+  // Every stretch long enough gives segments (a horizon broken by obstacles gives several).
+  for (const Interval& piece : pieces(&intervals, o.max_gap_px)) {
+    // Too short, or mostly a line found before (its stretches span corners' claimed pixels).
+    if (piece.t1 - piece.t0 < o.min_line_length_px || piece.free_pixels < 0.5 * piece.pixels) continue;
+    std::vector<DetectedLine> segments;
+    if (edge_image) {
+      // Sub-pixel: ridge centres along the line, robustly fitted, split where they bend.
+      RidgeFitOptions ridge;
+      ridge.half_width_px = o.fit_distance_px;
+      ridge.min_strength = ridge_strength;
+      ridge.max_gap_px = o.max_gap_px;
+      std::vector<RidgeFit> fits;
+      fitRidge(*edge_image, line, piece.t0 - 2, piece.t1 + 2, ridge, o.min_line_length_px, &fits);
+      for (const RidgeFit& fit : fits) {
+        DetectedLine d;
+        d.line = fit.line;
+        d.x1 = fit.x1;
+        d.y1 = fit.y1;
+        d.x2 = fit.x2;
+        d.y2 = fit.y2;
+        d.rms = fit.rms;
+        d.sums = fit.sums;
+        d.length = std::hypot(d.x2 - d.x1, d.y2 - d.y1);
+        segments.push_back(d);
+      }
+    } else {
+      // Without the edge image: a least-squares fit of the stretch's run pixels.
+      const double range[2] = {piece.t0 - 0.5, piece.t1 + 0.5};
+      DetectedLine d;
+      collect(runs, homogeneous(line), o.fit_distance_px, range, &d.sums, nullptr);
+      if (d.sums.n < 2 || !d.sums.fitLine(&d.line, &d.rms)) continue;
+      const Homogeneous h = homogeneous(d.line);
+      std::vector<Interval> own;
+      collect(runs, h, o.fit_distance_px, range, nullptr, &own);
+      const Interval extent = mostPixels(pieces(&own, o.max_gap_px));
+      // End points: the foot of the perpendicular from the origin plus t along the direction.
+      const double fx = -h.c * h.a, fy = -h.c * h.b;
+      d.x1 = fx + extent.t0 * h.b;
+      d.y1 = fy - extent.t0 * h.a;
+      d.x2 = fx + extent.t1 * h.b;
+      d.y2 = fy - extent.t1 * h.a;
+      d.length = extent.t1 - extent.t0;
+      segments.push_back(d);
+    }
+    for (DetectedLine& d : segments) {
+      const Homogeneous h = homogeneous(d.line);
+      const double ta = along(h, d.x1, d.y1), tb = along(h, d.x2, d.y2);
+      const double range[2] = {std::min(ta, tb) - 0.5, std::max(ta, tb) + 0.5};
+      PointSums support;
+      collect(runs, h, 1.5, range, &support, nullptr);
+      if (d.length < o.min_line_length_px || support.n < o.min_support_ratio * d.length) continue;
+      d.support = static_cast<uint32_t>(support.n);
+      out->push_back(d);
+    }
+  }
+}
+
+void RleHough::vote(const Run* runs, int run_count, uint64_t samples, uint64_t seed, int width, int height,
+                    const HoughOptions& o) {
+  // Uniform over the runs' pixels, which is the paper's "a run weighted by its length, then a
+  // position in it": drawn from a flat table of the pixels.
+  pixels_.clear();
+  for (int i = 0; i < run_count; ++i) {
+    for (int x = runs[i].x0; x <= runs[i].x1; ++x) pixels_.push_back({static_cast<int16_t>(x), static_cast<int16_t>(runs[i].y)});
+  }
+  const uint64_t total = pixels_.size();
+  // Sparse accumulator: an open-addressing table of (cell key, votes).
+  size_t capacity = 64;
+  while (capacity < 2 * samples) capacity *= 2;
+  table_.assign(capacity, Cell{kEmpty, 0});
+  theta_bins_ = static_cast<int>(std::ceil(180.0 / o.theta_bin_deg));
+  alpha_ = -std::max(width, height);
+  intercept_bins_ = static_cast<int>(std::ceil((width + height - alpha_) / o.intercept_bin_px)) + 1;
+
+  uint64_t state = seed;
+  auto draw = [&](double* x, double* y) {
+    // splitmix64, then a multiply-shift into [0, total).
+    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    const PixelXY& p = pixels_[static_cast<size_t>((static_cast<unsigned __int128>(z) * total) >> 64)];
+    *x = p.x;
+    *y = p.y;
+  };
+  const double min_d2 = o.min_pair_distance_px * o.min_pair_distance_px;
+  for (uint64_t s = 0; s < samples; ++s) {
+    double x1, y1, x2 = 0, y2 = 0;
+    draw(&x1, &y1);
+    bool far_enough = false;
+    for (int attempt = 0; attempt < 3 && !far_enough; ++attempt) {
+      draw(&x2, &y2);
+      far_enough = (x2 - x1) * (x2 - x1) + (y2 - y1) * (y2 - y1) >= min_d2;
+    }
+    if (!far_enough) continue;
+    // The pair's line: theta in (-90, 90] deg, and the intercept the paper's convention picks
+    // (computed from the slope directly, no tan).
+    double dx = x2 - x1, dy = y2 - y1;
+    if (dx < 0 || (dx == 0 && dy < 0)) {
+      dx = -dx;
+      dy = -dy;
+    }
+    const double theta_deg = fastAtan2Deg(dy, dx);
+    const double intercept = std::fabs(dy) < dx ? y1 - x1 * dy / dx : x1 - y1 * dx / dy;
+    const double shifted = theta_deg + 90.0;
+    const int theta_bin = static_cast<int>(shifted / o.theta_bin_deg) % theta_bins_;
+    const int intercept_bin = std::min(intercept_bins_ - 1, std::max(0, static_cast<int>(std::floor((intercept - alpha_) / o.intercept_bin_px))));
+    const uint32_t key = static_cast<uint32_t>(theta_bin) * static_cast<uint32_t>(intercept_bins_) + static_cast<uint32_t>(intercept_bin);
+    size_t slot = (key * 2654435761u) & (capacity - 1);
+    while (table_[slot].key != kEmpty && table_[slot].key != key) slot = (slot + 1) & (capacity - 1);
+    table_[slot].key = key;
+    ++table_[slot].votes;
+  }
+  // Cells in theta-bin order (a counting sort; within a bin, table order, which depends only
+  // on the keys: deterministic).
+  bucket_start_.assign(theta_bins_ + 1, 0);
+  size_t count = 0;
+  for (const Cell& c : table_) {
+    if (c.key == kEmpty) continue;
+    ++bucket_start_[c.key / intercept_bins_ + 1];
+    ++count;
+  }
+  for (int b = 0; b < theta_bins_; ++b) bucket_start_[b + 1] += bucket_start_[b];
+  cells_.resize(count);
+  fill_.assign(bucket_start_.begin(), bucket_start_.end() - 1);
+  for (const Cell& c : table_) {
+    if (c.key != kEmpty) cells_[fill_[c.key / intercept_bins_]++] = c;
+  }
+}
+
+int RleHough::extractLines(const ObjectRuns& indexed, const EdgeObject& object, int index, const HoughOptions& o,
+                           const cv::Mat* edge_image, double ridge_strength, std::vector<DetectedLine>* found,
+                           HoughStats* stats) {
+  const size_t n = cells_.size();
+  const std::vector<int>& bucket_start = bucket_start_;
+  // Each theta bin's line angle, direction and normal, computed once.
+  bin_theta_.resize(theta_bins_);
+  bin_normal_x_.resize(theta_bins_);
+  bin_normal_y_.resize(theta_bins_);
+  for (int b = 0; b < theta_bins_; ++b) {
+    bin_theta_[b] = normalizeLineAngle((-90.0 + (b + 0.5) * o.theta_bin_deg) * kDeg);
+    bin_normal_x_[b] = -std::sin(bin_theta_[b]);
+    bin_normal_y_[b] = std::cos(bin_theta_[b]);
+  }
+  std::vector<ImageLine> cell_lines(n);
+  std::vector<Homogeneous> cell_h(n);
+  for (size_t i = 0; i < n; ++i) {
+    const int tb = static_cast<int>(cells_[i].key / intercept_bins_), cb = static_cast<int>(cells_[i].key % intercept_bins_);
+    cell_lines[i] = ImageLine{bin_theta_[tb], alpha_ + (cb + 0.5) * o.intercept_bin_px};
+    // c from the intercept point: (0, intercept) or (intercept, 0).
+    const double a = bin_normal_x_[tb], b = bin_normal_y_[tb];
+    const double px = usesYIntercept(cell_lines[i].theta) ? 0.0 : cell_lines[i].intercept;
+    const double py = usesYIntercept(cell_lines[i].theta) ? cell_lines[i].intercept : 0.0;
+    cell_h[i] = Homogeneous{a, b, -(a * px + b * py)};
+  }
+  // Seeds: cells with two votes or more, strongest first (a single vote may still join a
+  // stronger cell's window).
+  std::vector<size_t> order;
+  for (size_t i = 0; i < n; ++i) {
+    if (cells_[i].votes >= 2) order.push_back(i);
+  }
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return cells_[a].votes != cells_[b].votes ? cells_[a].votes > cells_[b].votes : cells_[a].key < cells_[b].key;
+  });
+
+  // Near-neighbour grouping: the strongest free cell gathers the free cells whose lines are
+  // within the window of its own (so +-90 deg and the +45 deg intercept flip are no borders).
+  std::vector<char> used(n, 0);
+  const int window_bins = static_cast<int>(std::ceil(o.peak_angle_deg / o.theta_bin_deg));
+  const double cos_peak = std::cos(o.peak_angle_deg * kDeg);
+  const double cos_explained = std::cos(kExplainedTiltDeg * kDeg);
+  int failures = 0, added = 0;
+  std::vector<size_t> members;
+  for (size_t seed_index : order) {
+    if (used[seed_index]) continue;
+    if (static_cast<int>(found->size()) >= o.max_lines_per_object || failures >= kMaxConsecutiveFailures) break;
+    const ImageLine& seed = cell_lines[seed_index];
+    const Homogeneous& hs = cell_h[seed_index];
+    // The foot of the object's centroid on the seed line: offsets are measured there.
+    const double d0 = distance(hs, object.cx, object.cy);
+    const double qx = object.cx - d0 * hs.a, qy = object.cy - d0 * hs.b;
+    const int seed_bin = static_cast<int>(cells_[seed_index].key / intercept_bins_);
+    uint32_t votes = 0;
+    double weighted_offset = 0, weighted_angle = 0;
+    members.clear();
+    for (int db = -window_bins; db <= window_bins; ++db) {
+      const int bin = ((seed_bin + db) % theta_bins_ + theta_bins_) % theta_bins_;
+      for (int i = bucket_start[bin]; i < bucket_start[bin + 1]; ++i) {
+        if (used[i]) continue;
+        const double cosine = cell_h[i].a * hs.a + cell_h[i].b * hs.b;  // cos of the angle between normals
+        if (std::fabs(cosine) < cos_peak) continue;
+        const double angle = normalizeLineAngle(cell_lines[i].theta - seed.theta);
+        // Lines of opposite orientation have opposite normals: measure along the seed's.
+        const double offset = distance(cell_h[i], qx, qy);
+        const double signed_offset = cosine >= 0 ? offset : -offset;
+        if (std::fabs(signed_offset) > o.peak_distance_px) continue;
+        members.push_back(i);
+        votes += cells_[i].votes;
+        weighted_offset += cells_[i].votes * signed_offset;
+        weighted_angle += cells_[i].votes * angle;
+      }
+    }
+    if (static_cast<int>(votes) < o.min_votes) {
+      used[seed_index] = 1;
+      ++failures;
+      continue;
+    }
+    for (size_t i : members) used[i] = 1;
+    ++stats->candidates;
+    // Start from the vote-weighted mean of the group.
+    const ImageLine start = lineThroughPointWithAngle(qx + weighted_offset / votes * hs.a,
+                                                      qy + weighted_offset / votes * hs.b,
+                                                      seed.theta + weighted_angle / votes);
+    // A peak whose pixels lines already found have taken (a second peak of one of them, or
+    // chance votes across them) is not worth a refit.
+    PointSums unclaimed;
+    collect(indexed, homogeneous(start), o.fit_distance_px, nullptr, &unclaimed, nullptr);
+    if (unclaimed.n < 0.5 * o.min_line_length_px) {
+      ++failures;
+      continue;
+    }
+    refined_.clear();
+    ++stats->refinements;
+    refine(indexed, start, o, edge_image, ridge_strength, &refined_);
+    if (refined_.empty()) {
+      ++failures;
+      continue;
+    }
+    failures = 0;
+    for (DetectedLine& line : refined_) {
+      // The ridge fit follows the edge image, where claims do not hold: a segment may land on
+      // one found before. Keep the better supported.
+      const double mx = 0.5 * (line.x1 + line.x2), my = 0.5 * (line.y1 + line.y2);
+      const auto same = std::find_if(found->begin(), found->end(), [&](const DetectedLine& f) {
+        return lineAngleDifference(f.line.theta, line.line.theta) < o.peak_angle_deg * kDeg &&
+               std::fabs(signedDistance(f.line, mx, my)) < o.peak_distance_px;
+      });
+      line.votes = votes;
+      line.object = index;
+      if (same != found->end()) {
+        if (line.support > same->support) *same = line;
+        continue;
+      }
+      found->push_back(line);
+      ++added;
+      // Claim the segment's pixels: later peaks and rounds work on what is left.
+      const Homogeneous hl = homogeneous(line.line);
+      const double ta = along(hl, line.x1, line.y1), tb = along(hl, line.x2, line.y2);
+      const double range[2] = {std::min(ta, tb), std::max(ta, tb)};
+      collect(indexed, hl, o.fit_distance_px, range, nullptr, nullptr, /*claim=*/true);
+      // Retire the cells the segment explains: pairs drawn along its ridge vote for lines
+      // tilted through it, which would otherwise seed it again.
+      for (size_t i = 0; i < n; ++i) {
+        const Homogeneous& hc = cell_h[i];
+        if (used[i] || std::fabs(hc.a * hl.a + hc.b * hl.b) < cos_explained) continue;
+        const double det = hl.a * hc.b - hl.b * hc.a;
+        if (std::fabs(det) < 1e-9) {  // parallel: near enough?
+          if (std::fabs(distance(hc, 0.5 * (line.x1 + line.x2), 0.5 * (line.y1 + line.y2))) <= o.fit_distance_px) used[i] = 1;
+          continue;
+        }
+        // Where the cell's line crosses the segment's line.
+        const double x = (hl.b * hc.c - hc.b * hl.c) / det, y = (hc.a * hl.c - hl.a * hc.c) / det;
+        const double t = along(hl, x, y);
+        if (t >= range[0] && t <= range[1]) used[i] = 1;
+      }
+    }
+  }
+  return added;
+}
+
+void RleHough::detectInObject(const EdgeObjectFinder& edges, int index, int width, int height,
+                              const HoughOptions& o, std::vector<DetectedLine>* lines, HoughStats* stats,
+                              const cv::Mat* edge_image, double ridge_strength) {
+  const EdgeObject& object = edges.objects()[index];
+  if (object.pixels < o.min_line_length_px) return;  // too small to hold a line of that length
+  const Run* runs = edges.runs().data() + object.first_run;
+  ++stats->objects;
+  row_first_.assign(static_cast<size_t>(object.bottom - object.top) + 2, 0);
+  for (int i = 0; i < object.run_count; ++i) ++row_first_[runs[i].y - object.top + 1];
+  for (size_t k = 1; k < row_first_.size(); ++k) row_first_[k] += row_first_[k - 1];
+  claimed_.assign(static_cast<size_t>(object.right - object.left + 1) * (object.bottom - object.top + 1), 0);
+  const ObjectRuns indexed{runs, row_first_.data(), object.top, object.bottom, object.left, object.right, claimed_.data()};
+
+  std::vector<DetectedLine> found;
+  sample_runs_.assign(runs, runs + object.run_count);
+  for (int round = 0; round < o.max_rounds; ++round) {
+    uint64_t pixels = 0;
+    for (const Run& run : sample_runs_) pixels += run.length();
+    if (pixels < o.min_line_length_px) break;
+    // eq. 2-4 for the pixels still unexplained, capped.
+    const uint64_t samples = std::min<uint64_t>(samplesFor(static_cast<double>(pixels), o), o.max_samples_per_object);
+    stats->sample_pairs += samples;
+    vote(sample_runs_.data(), static_cast<int>(sample_runs_.size()), samples,
+         o.seed * 0x9E3779B97F4A7C15ull + static_cast<uint64_t>(index) * 8 + round + 1, width, height, o);
+    if (extractLines(indexed, object, index, o, edge_image, ridge_strength, &found, stats) == 0) break;
+    // The next round samples only pixels no line has claimed: the object's runs cut at them.
+    sample_runs_.clear();
+    for (int i = 0; i < object.run_count; ++i) {
+      const Run& run = runs[i];
+      int start = -1;
+      for (int x = run.x0; x <= run.x1 + 1; ++x) {
+        const bool free = x <= run.x1 && !indexed.isClaimed(x, run.y);
+        if (free && start < 0) start = x;
+        if (!free && start >= 0) {
+          sample_runs_.push_back(Run{start, x - 1, run.y, 0, run.label});
+          start = -1;
+        }
+      }
+    }
+  }
+  lines->insert(lines->end(), found.begin(), found.end());
+}
+
+void RleHough::detect(const EdgeObjectFinder& edges, int width, int height, const HoughOptions& o,
+                      std::vector<DetectedLine>* lines, HoughStats* stats, const cv::Mat* edge_image,
+                      double ridge_strength) {
+  lines->clear();
+  *stats = HoughStats();
+  for (int i = 0; i < static_cast<int>(edges.objects().size()); ++i) {
+    detectInObject(edges, i, width, height, o, lines, stats, edge_image, ridge_strength);
+  }
+  // The paper's comparison: one global random Hough over every edge pixel needs eq. 4's pairs
+  // for the shortest line among all of them.
+  uint64_t all_pixels = 0;
+  for (const EdgeObject& object : edges.objects()) all_pixels += object.pixels;
+  stats->global_sample_pairs = samplesFor(static_cast<double>(all_pixels), o);
+}
+
+}  // namespace rle_vision
