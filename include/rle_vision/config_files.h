@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rle_vision/color_class.h"
+#include "rle_vision/landmark_detector.h"
 #include "rle_vision/scene_simulator.h"
 
 namespace rle_vision {
@@ -24,6 +25,12 @@ std::vector<ColorClass> parseCmvisionColors(const std::string& text, const std::
 
 // Writes classes as colors.yaml text (loadColorClasses reads it back unchanged).
 std::string colorClassesToYaml(const std::vector<ColorClass>& classes);
+
+// Landmark parameters (see config/landmark.yaml; the names of the Landmark nodelet's
+// parameters, plus the EdgeDetector's edge_gain). Missing keys keep their defaults; the
+// result is validated. Throws ConfigError.
+LandmarkOptions loadLandmarkParams(const std::string& path);
+LandmarkOptions parseLandmarkParams(const std::string& text, const std::string& origin);
 
 // A scene file (see config/scene_default.yaml). Throws ConfigError.
 SceneConfig loadSceneConfig(const std::string& path);

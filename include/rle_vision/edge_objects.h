@@ -14,6 +14,7 @@ namespace rle_vision {
 
 enum EdgeClass : uint8_t { kNoEdge = 0, kGrayEdge = 1, kSharpEdge = 2 };
 
+// Edge objects are the connected edges; with `thin`, an object holds the crests of its edges.
 struct EdgeObjectOptions {
   uint8_t gray_threshold = 60;    // edge values >= this (and below sharp) are the gray band
   uint8_t sharp_threshold = 200;  // edge values >= this are sharp edges
@@ -44,14 +45,16 @@ class EdgeObjectFinder {
   const std::vector<EdgeObject>& objects() const { return objects_; }
   // Runs grouped by object (row-major within an object); labels are EdgeClass values.
   const std::vector<Run>& runs() const { return object_runs_; }
+  // Pixels and runs the objects are made of (crests when thinning), before the size filter.
   uint64_t edgePixels() const { return edge_pixels_; }
-  uint64_t runCount() const { return runs_.size(); }
+  uint64_t runCount() const { return held_runs_; }
 
  private:
   std::vector<uint8_t> labels_;
   cv::Mat thin_;
-  std::vector<Run> runs_, object_runs_;
-  std::vector<int32_t> row_starts_, object_of_root_, fill_;
+  std::vector<Run> runs_, crest_runs_, object_runs_;
+  std::vector<int32_t> row_starts_, object_of_root_, object_index_, fill_;
+  uint64_t held_runs_ = 0;
   std::vector<Region> regions_;
   std::vector<EdgeObject> objects_;
   RegionBuilder builder_;

@@ -17,7 +17,8 @@ struct RidgeFitOptions {
   double min_strength = 60;   // weaker profile maxima are not ridge points
   double inlier_px = 1.5;     // ridge points this close to the fitted line form the segment
   double max_gap_px = 8;      // a longer gap between ridge points ends the segment
-  double split_px = 1.0;      // a stretch bending further than this from its line is split
+  double split_px = 1.0;      // a stretch bending further than this from its chord ...
+  double split_angle_deg = 2; // ... into two sides this different in angle is split
   double end_trim_px = 3;     // the final fit leaves out this much at each end (at most 15%)
 };
 

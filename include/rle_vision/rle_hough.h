@@ -41,6 +41,7 @@ struct HoughOptions {
   double peak_distance_px = 3;        // ... and offset join one peak
   int max_lines_per_object = 32;
   int max_rounds = 4;                 // sampling rounds per object; each samples what is left
+  int max_failed_peaks = 10;          // a round stops after this many peaks in a row lead nowhere
   double fit_distance_px = 4;         // pixels this close to a line refine it (covers a whole ridge)
   double max_gap_px = 8;              // a longer gap ends a line's segment
   double min_support_ratio = 0.5;     // support pixels per pixel of length, at least

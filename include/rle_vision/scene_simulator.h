@@ -50,7 +50,8 @@ struct SceneConfig {
   std::array<double, 3> light_cast_start_rgb{{1.0, 1.0, 1.0}};
   std::array<double, 3> light_cast_end_rgb{{1.0, 1.0, 1.0}};
   double light_drift_duration_s = 0;
-  double blur_sigma_px = 0;  // Gaussian lens blur, px (0: hard pixel edges)
+  bool antialias = true;     // blend polygon edge pixels (the image then holds sub-pixel edge positions)
+  double blur_sigma_px = 0;  // Gaussian lens blur, px (0: no blur)
   double noise_sigma = 0;    // Gaussian sensor noise, per channel, 8-bit units
   uint64_t seed = 1;
   std::vector<SceneBox> boxes;

@@ -45,7 +45,14 @@ SceneConfig parseSceneConfig(const std::string& source, const std::string& origi
     c.light_drift_duration_s = number(origin, light, "drift_duration_s", c.light_drift_duration_s, 0, 1e6);
   }
   if (const YAML::Node sensor = root["sensor"]) {
-    checkKeys(origin, sensor, {"noise_sigma", "blur_sigma_px", "seed"});
+    checkKeys(origin, sensor, {"noise_sigma", "blur_sigma_px", "seed", "antialias"});
+    if (const YAML::Node aa = sensor["antialias"]) {
+      try {
+        c.antialias = aa.as<bool>();
+      } catch (const YAML::Exception&) {
+        fail(origin, aa, "'antialias' must be true or false");
+      }
+    }
     c.noise_sigma = number(origin, sensor, "noise_sigma", c.noise_sigma, 0, 128);
     c.blur_sigma_px = number(origin, sensor, "blur_sigma_px", c.blur_sigma_px, 0, 20);
     c.seed = static_cast<uint64_t>(number(origin, sensor, "seed", static_cast<double>(c.seed), 0, 1e15));

@@ -51,42 +51,79 @@ void EdgeObjectFinder::find(const cv::Mat& edges, const EdgeObjectOptions& optio
   }
   const uint8_t gray = std::max<uint8_t>(1, options.gray_threshold);  // 0 would make every pixel an edge
   const uint8_t sharp = std::max(gray, options.sharp_threshold);
-  if (options.thin) thinEdges(edges, gray, &thin_);
-  const cv::Mat& source = options.thin ? thin_ : edges;
+  // Objects are the connected edges as they are (a thin bar's two edges are one object); with
+  // thinning, the runs they hold are their crests.
   labels_.resize(edges.cols);
   runs_.clear();
   row_starts_.resize(static_cast<size_t>(edges.rows) + 1);
   for (int y = 0; y < edges.rows; ++y) {
     row_starts_[y] = static_cast<int32_t>(runs_.size());
-    edgeClasses(source.ptr<uint8_t>(y), edges.cols, gray, sharp, labels_.data());
+    edgeClasses(edges.ptr<uint8_t>(y), edges.cols, gray, sharp, labels_.data());
     appendRowRuns(labels_.data(), edges.cols, y, &runs_);
   }
   row_starts_[edges.rows] = static_cast<int32_t>(runs_.size());
-  edge_pixels_ = 0;
-  for (const Run& run : runs_) edge_pixels_ += run.length();
-
-  builder_.build(&runs_, row_starts_, options.connectivity, {0, options.min_object_px, options.min_object_px},
-                 &regions_, /*join_labels=*/true);
-
-  // Group the runs of each kept object together (a counting sort by object).
-  objects_.clear();
+  builder_.build(&runs_, row_starts_, options.connectivity, {}, &regions_, /*join_labels=*/true);
   object_of_root_.assign(runs_.size(), -1);
-  for (const Region& r : regions_) {
-    object_of_root_[r.root_run] = static_cast<int32_t>(objects_.size());
+  for (size_t i = 0; i < regions_.size(); ++i) object_of_root_[regions_[i].root_run] = static_cast<int32_t>(i);
+
+  // The runs objects hold: every edge run, or the crest runs (each inside one edge run).
+  std::vector<Run>& held = options.thin ? crest_runs_ : runs_;
+  std::vector<int32_t> held_region;
+  if (options.thin) {
+    thinEdges(edges, gray, &thin_);
+    crest_runs_.clear();
+    for (int y = 0; y < edges.rows; ++y) {
+      const size_t first = crest_runs_.size();
+      edgeClasses(thin_.ptr<uint8_t>(y), edges.cols, gray, sharp, labels_.data());
+      appendRowRuns(labels_.data(), edges.cols, y, &crest_runs_);
+      // Each crest run lies inside an edge run of its row: that run's region is its object.
+      int32_t edge_run = row_starts_[y];
+      for (size_t i = first; i < crest_runs_.size(); ++i) {
+        while (runs_[edge_run].x1 < crest_runs_[i].x0) ++edge_run;
+        crest_runs_[i].parent = runs_[edge_run].parent;
+      }
+    }
+  }
+  // Object statistics from the runs held, then the minimum size.
+  struct Stats {
+    uint64_t pixels = 0;
+    double sx = 0, sy = 0;
+    int left = INT32_MAX, top = INT32_MAX, right = -1, bottom = -1;
+    int32_t runs = 0;
+  };
+  std::vector<Stats> stats(regions_.size());
+  edge_pixels_ = 0;
+  for (const Run& run : held) {
+    Stats& st = stats[object_of_root_[run.parent]];
+    const int n = run.length();
+    st.pixels += n;
+    st.sx += 0.5 * (run.x0 + run.x1) * n;
+    st.sy += static_cast<double>(run.y) * n;
+    st.left = std::min(st.left, static_cast<int>(run.x0));
+    st.right = std::max(st.right, static_cast<int>(run.x1));
+    st.top = std::min(st.top, static_cast<int>(run.y));
+    st.bottom = std::max(st.bottom, static_cast<int>(run.y));
+    ++st.runs;
+    edge_pixels_ += n;
+  }
+  objects_.clear();
+  object_index_.assign(regions_.size(), -1);
+  for (size_t r = 0; r < regions_.size(); ++r) {
+    const Stats& st = stats[r];
+    if (st.pixels < options.min_object_px) continue;
+    object_index_[r] = static_cast<int32_t>(objects_.size());
     EdgeObject o;
-    o.pixels = r.area;
-    o.left = r.left;
-    o.top = r.top;
-    o.right = r.right;
-    o.bottom = r.bottom;
-    o.cx = r.cx;
-    o.cy = r.cy;
+    o.pixels = static_cast<uint32_t>(st.pixels);
+    o.left = st.left;
+    o.top = st.top;
+    o.right = st.right;
+    o.bottom = st.bottom;
+    o.cx = st.sx / st.pixels;
+    o.cy = st.sy / st.pixels;
+    o.run_count = st.runs;
     objects_.push_back(o);
   }
-  for (const Run& run : runs_) {
-    const int32_t object = object_of_root_[run.parent];
-    if (object >= 0) ++objects_[object].run_count;
-  }
+  // Group the runs of each kept object together, row-major within it (a counting sort).
   int32_t offset = 0;
   fill_.resize(objects_.size());
   for (size_t i = 0; i < objects_.size(); ++i) {
@@ -95,10 +132,11 @@ void EdgeObjectFinder::find(const cv::Mat& edges, const EdgeObjectOptions& optio
     offset += objects_[i].run_count;
   }
   object_runs_.resize(offset);
-  for (const Run& run : runs_) {
-    const int32_t object = object_of_root_[run.parent];
+  for (const Run& run : held) {
+    const int32_t object = object_index_[object_of_root_[run.parent]];
     if (object >= 0) object_runs_[fill_[object]++] = run;
   }
+  held_runs_ = held.size();
 }
 
 }  // namespace rle_vision

@@ -29,7 +29,9 @@ std::string validateLandmarkOptions(const LandmarkOptions& o) {
   if (!std::isfinite(h.min_pair_distance_px) || h.min_pair_distance_px < 0) return "min_pair_distance_px must be >= 0";
   if (!std::isfinite(h.min_support_ratio) || h.min_support_ratio < 0) return "min_support_ratio must be >= 0";
   if (h.theta_bin_deg > 45) return "theta_bin_deg must be <= 45";
-  if (h.max_samples_per_object < 1 || h.max_lines_per_object < 1) return "sample and line caps must be >= 1";
+  if (h.max_samples_per_object < 1 || h.max_lines_per_object < 1 || h.max_rounds < 1 || h.max_failed_peaks < 1) {
+    return "sample, line, round and failed-peak limits must be >= 1";
+  }
   for (double v : {z.min_piece_length_px, z.max_angle_deg, z.merge_angle_deg, z.merge_distance_px}) {
     if (!positive(v)) return "horizon lengths, angles and distances must be finite numbers > 0";
   }

@@ -28,10 +28,9 @@ inline double sample(const cv::Mat& edges, double x, double y) {
 }
 
 // Ridge points: every pixel along the line, the edge profile perpendicular to it (half-pixel
-// steps, bilinear); its ridge is the stretch above half the edge threshold around the
-// maximum (a thin bar's two edges and the dip between are one ridge), its centre the centroid
-// of that stretch. Perpendicular profiles stay symmetric at end caps, unlike row or column
-// profiles of a slanted line.
+// steps, bilinear) where it peaks above min_strength; its centre is the centroid of the
+// profile above half the edge threshold. Perpendicular profiles stay symmetric at end caps,
+// unlike row or column profiles of a slanted line.
 void ridgePoints(const cv::Mat& edges, const ImageLine& line, double t0, double t1,
                  const RidgeFitOptions& o, std::vector<RidgePoint>* out) {
   out->clear();
@@ -57,13 +56,18 @@ void ridgePoints(const cv::Mat& edges, const ImageLine& line, double t0, double 
       }
     }
     if (profile[best] < o.min_strength) continue;
-    int first = best, last = best;
-    while (first > 0 && profile[first - 1] >= floor) --first;
-    while (last < 2 * half && profile[last + 1] >= floor) ++last;
+    // The centre: the centroid of the strong samples across the window, so a thin bar's two
+    // edges (however deep the dip between them) give the bar's centre line.
+    // Samples of at least half the peak: a bar's two equal edges count, a weaker edge nearby
+    // does not.
+    const double level = std::max(floor, 0.5 * profile[best]);
     double weight = 0, moment = 0;
-    for (int k = first; k <= last; ++k) {
-      weight += profile[k];
-      moment += profile[k] * (k - half) * kStep;
+    for (int k = 0; k <= 2 * half; ++k) {
+      if (profile[k] < level) continue;
+      const double w = profile[k] - floor;
+      if (w <= 0) continue;
+      weight += w;
+      moment += w * (k - half) * kStep;
     }
     const double offset = moment / weight;
     out->push_back({bx + offset * nx, by + offset * ny, t});
@@ -88,10 +92,12 @@ void splitAndFit(const std::vector<RidgePoint>& points, size_t first, size_t las
   if (last <= first + 2 || points[last].t - points[first].t < min_length) return;
   RidgeFit fit;
   if (!fitPoints(points, first, last, &fit.line, &fit.rms, &fit.sums)) return;
+  // Deviation from the chord between the stretch's ends (the classic Douglas-Peucker measure:
+  // at a corner it peaks at the vertex, where a least-squares line would peak at the ends).
   thread_local std::vector<double> deviation;
   deviation.resize(last - first + 1);
-  const Normal normal(fit.line);
-  for (size_t i = first; i <= last; ++i) deviation[i - first] = std::fabs(normal.distance(points[i].x, points[i].y));
+  const Normal chord(lineThroughPoints(points[first].x, points[first].y, points[last].x, points[last].y));
+  for (size_t i = first; i <= last; ++i) deviation[i - first] = std::fabs(chord.distance(points[i].x, points[i].y));
   size_t farthest = first;
   double largest = 0;
   for (size_t i = first + 2; i + 2 <= last; ++i) {
@@ -104,17 +110,39 @@ void splitAndFit(const std::vector<RidgePoint>& points, size_t first, size_t las
     }
   }
   if (largest > o.split_px && depth < 8) {
-    splitAndFit(points, first, farthest, o, min_length, depth + 1, fits);
-    splitAndFit(points, farthest, last, o, min_length, depth + 1, fits);
-    return;
+    // A corner also turns: split only when the two sides' own lines differ in angle (a
+    // straight edge whose end points sit on bent corners does not).
+    ImageLine head, tail;
+    double head_rms = 0, tail_rms = 0;
+    const bool turns = farthest >= first + 3 && last >= farthest + 3 &&
+                       fitPoints(points, first, farthest, &head, &head_rms, nullptr) &&
+                       fitPoints(points, farthest, last, &tail, &tail_rms, nullptr) &&
+                       lineAngleDifference(head.theta, tail.theta) > o.split_angle_deg * M_PI / 180;
+    if (turns) {
+      splitAndFit(points, first, farthest, o, min_length, depth + 1, fits);
+      splitAndFit(points, farthest, last, o, min_length, depth + 1, fits);
+      return;
+    }
   }
-  // The final fit leaves out the ends, where a corner's other edge bends the ridge; the end
-  // points still come from the whole stretch.
+  // The final fit leaves out the ends, where a corner's other edge bends the ridge, and stray
+  // points (beyond three median deviations); the end points still come from the whole stretch.
   const double trim = std::min(o.end_trim_px, 0.15 * (points[last].t - points[first].t));
-  size_t inner_first = first, inner_last = last;
-  while (inner_first < last && points[inner_first].t < points[first].t + trim) ++inner_first;
-  while (inner_last > first && points[inner_last].t > points[last].t - trim) --inner_last;
-  if (inner_last > inner_first + 2) fitPoints(points, inner_first, inner_last, &fit.line, &fit.rms, &fit.sums);
+  const Normal normal(fit.line);
+  for (size_t i = first; i <= last; ++i) deviation[i - first] = std::fabs(normal.distance(points[i].x, points[i].y));
+  std::nth_element(deviation.begin(), deviation.begin() + deviation.size() / 2, deviation.end());
+  const double stray = std::max(0.5, 3.0 * 1.4826 * deviation[deviation.size() / 2]);
+  PointSums inner;
+  for (size_t i = first; i <= last; ++i) {
+    if (points[i].t < points[first].t + trim || points[i].t > points[last].t - trim) continue;
+    if (std::fabs(normal.distance(points[i].x, points[i].y)) <= stray) inner.addPixel(points[i].x, points[i].y);
+  }
+  double inner_rms = 0;
+  ImageLine inner_line;
+  if (inner.n >= 3 && inner.fitLine(&inner_line, &inner_rms)) {
+    fit.line = inner_line;
+    fit.rms = inner_rms;
+    fit.sums = inner;
+  }
   fit.points = static_cast<int>(last - first + 1);
   // End points: the first and last ridge point projected on the fitted line.
   const Normal final_normal(fit.line);
@@ -167,12 +195,13 @@ void fitRobustly(std::vector<RidgePoint>* points_ptr, const ImageLine& start, co
     double rms = 0;
     if (kept.n < 3 || !kept.fitLine(&line, &rms)) return;
   }
-  // Stretches of inliers (within the final cut of that line; outliers are skipped) whose
-  // consecutive points are at most max_gap apart; each is split where it bends, and fitted.
+  // Stretches of points within inlier_px of that line (others are skipped) whose consecutive
+  // points are at most max_gap apart; each is split where it bends, and fitted. (The band is
+  // wider than the cut above so that a bend shows as a growing deviation.)
   inliers.clear();
   const Normal normal(line);
   for (const RidgePoint& p : points) {
-    if (std::fabs(normal.distance(p.x, p.y)) <= cut) inliers.push_back(p);
+    if (std::fabs(normal.distance(p.x, p.y)) <= std::max(cut, o.inlier_px)) inliers.push_back(p);
   }
   size_t first = 0;
   for (size_t i = 1; i <= inliers.size(); ++i) {

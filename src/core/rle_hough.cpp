@@ -12,9 +12,6 @@ constexpr double kDeg = M_PI / 180;
 constexpr uint32_t kEmpty = 0xFFFFFFFFu;
 // Cells whose lines cross a found segment at up to this angle are its own noisy votes.
 constexpr double kExplainedTiltDeg = 20;
-// Peaks come strongest first: once this many in a row lead nowhere, the rest are chance
-// alignments of pixels from different edges.
-constexpr int kMaxConsecutiveFailures = 4;
 
 struct Homogeneous {
   double a, b, c;  // a x + b y + c = 0, (a, b) = (-sin theta, cos theta)
@@ -73,6 +70,18 @@ Interval mostPixels(const std::vector<Interval>& list) {
     if (i.pixels > best.pixels) best = i;
   }
   return best;
+}
+
+// Two segments on the same line (angle and offset within the tolerances) that overlap along
+// it by at least half the shorter one.
+bool sameSegment(const DetectedLine& a, const DetectedLine& b, double angle_tol, double offset_tol) {
+  if (lineAngleDifference(a.line.theta, b.line.theta) > angle_tol) return false;
+  if (std::fabs(signedDistance(a.line, 0.5 * (b.x1 + b.x2), 0.5 * (b.y1 + b.y2))) > offset_tol) return false;
+  const double dx = std::cos(a.line.theta), dy = std::sin(a.line.theta);
+  const double a0 = a.x1 * dx + a.y1 * dy, a1 = a.x2 * dx + a.y2 * dy;
+  const double b0 = b.x1 * dx + b.y1 * dy, b1 = b.x2 * dx + b.y2 * dy;
+  const double overlap = std::min(std::max(a0, a1), std::max(b0, b1)) - std::max(std::min(a0, a1), std::min(b0, b1));
+  return overlap > 0.5 * std::min(a.length, b.length);
 }
 
 }  // namespace
@@ -197,18 +206,30 @@ void RleHough::refine(const ObjectRuns& runs, const ImageLine& seed, const Hough
       ridge.half_width_px = o.fit_distance_px;
       ridge.min_strength = ridge_strength;
       ridge.max_gap_px = o.max_gap_px;
+      // Near a corner the ridge bends away: the straight stretch may fall short of the pixels'
+      // extent by up to a fitting band at each end, which the segment then gets back.
       std::vector<RidgeFit> fits;
-      fitRidge(*edge_image, line, piece.t0 - 2, piece.t1 + 2, ridge, o.min_line_length_px, &fits);
+      const double reach = o.fit_distance_px;
+      fitRidge(*edge_image, line, piece.t0 - 2, piece.t1 + 2, ridge, std::max(5.0, o.min_line_length_px - 2 * reach), &fits);
       for (const RidgeFit& fit : fits) {
         DetectedLine d;
         d.line = fit.line;
-        d.x1 = fit.x1;
-        d.y1 = fit.y1;
-        d.x2 = fit.x2;
-        d.y2 = fit.y2;
         d.rms = fit.rms;
         d.sums = fit.sums;
-        d.length = std::hypot(d.x2 - d.x1, d.y2 - d.y1);
+        const double dx = std::cos(fit.line.theta), dy = std::sin(fit.line.theta);
+        double px, py;
+        pointOnLine(fit.line, &px, &py);
+        double t_start = (fit.x1 - px) * dx + (fit.y1 - py) * dy, t_end = (fit.x2 - px) * dx + (fit.y2 - py) * dy;
+        if (t_start > t_end) std::swap(t_start, t_end);
+        // The piece's extent along the fitted line (t relative to its point on the line).
+        const double origin = px * dx + py * dy;
+        t_start = std::max(t_start - reach, std::min(t_start, piece.t0 - origin));
+        t_end = std::min(t_end + reach, std::max(t_end, piece.t1 - origin));
+        d.x1 = px + t_start * dx;
+        d.y1 = py + t_start * dy;
+        d.x2 = px + t_end * dx;
+        d.y2 = py + t_end * dy;
+        d.length = t_end - t_start;
         segments.push_back(d);
       }
     } else {
@@ -361,7 +382,9 @@ int RleHough::extractLines(const ObjectRuns& indexed, const EdgeObject& object, 
   std::vector<size_t> members;
   for (size_t seed_index : order) {
     if (used[seed_index]) continue;
-    if (static_cast<int>(found->size()) >= o.max_lines_per_object || failures >= kMaxConsecutiveFailures) break;
+    // Peaks come strongest first: once max_failed_peaks in a row lead nowhere, the rest are
+    // chance alignments of pixels from different edges.
+    if (static_cast<int>(found->size()) >= o.max_lines_per_object || failures >= o.max_failed_peaks) break;
     const ImageLine& seed = cell_lines[seed_index];
     const Homogeneous& hs = cell_h[seed_index];
     // The foot of the object's centroid on the seed line: offsets are measured there.
@@ -417,11 +440,9 @@ int RleHough::extractLines(const ObjectRuns& indexed, const EdgeObject& object, 
     failures = 0;
     for (DetectedLine& line : refined_) {
       // The ridge fit follows the edge image, where claims do not hold: a segment may land on
-      // one found before. Keep the better supported.
-      const double mx = 0.5 * (line.x1 + line.x2), my = 0.5 * (line.y1 + line.y2);
+      // one found before (collinear but apart is another segment). Keep the better supported.
       const auto same = std::find_if(found->begin(), found->end(), [&](const DetectedLine& f) {
-        return lineAngleDifference(f.line.theta, line.line.theta) < o.peak_angle_deg * kDeg &&
-               std::fabs(signedDistance(f.line, mx, my)) < o.peak_distance_px;
+        return sameSegment(f, line, o.peak_angle_deg * kDeg, o.peak_distance_px);
       });
       line.votes = votes;
       line.object = index;
@@ -437,7 +458,10 @@ int RleHough::extractLines(const ObjectRuns& indexed, const EdgeObject& object, 
       const double range[2] = {std::min(ta, tb), std::max(ta, tb)};
       collect(indexed, hl, o.fit_distance_px, range, nullptr, nullptr, /*claim=*/true);
       // Retire the cells the segment explains: pairs drawn along its ridge vote for lines
-      // tilted through it, which would otherwise seed it again.
+      // tilted through it, which would otherwise seed it again. They cross it inside; an edge
+      // meeting it at a corner crosses at an end, so the ends are left out.
+      const double end_margin = std::min(2 * o.fit_distance_px, 0.25 * (range[1] - range[0]));
+      const double inside[2] = {range[0] + end_margin, range[1] - end_margin};
       for (size_t i = 0; i < n; ++i) {
         const Homogeneous& hc = cell_h[i];
         if (used[i] || std::fabs(hc.a * hl.a + hc.b * hl.b) < cos_explained) continue;
@@ -449,7 +473,7 @@ int RleHough::extractLines(const ObjectRuns& indexed, const EdgeObject& object, 
         // Where the cell's line crosses the segment's line.
         const double x = (hl.b * hc.c - hc.b * hl.c) / det, y = (hc.a * hl.c - hl.a * hc.c) / det;
         const double t = along(hl, x, y);
-        if (t >= range[0] && t <= range[1]) used[i] = 1;
+        if (t >= inside[0] && t <= inside[1]) used[i] = 1;
       }
     }
   }

@@ -285,7 +285,7 @@ SimFrame SceneSimulator::render(uint64_t frame_index, double t) const {
                             static_cast<int>(std::lround(p.y() * (1 << kSubPixelBits))));
       }
       const cv::Scalar colour = litBgr(box.rgb, faceShade(face.normal), frame.light_gain, cast);
-      cv::fillConvexPoly(frame.image, points, colour, cv::LINE_8, kSubPixelBits);
+      cv::fillConvexPoly(frame.image, points, colour, config_.antialias ? cv::LINE_AA : cv::LINE_8, kSubPixelBits);
       cv::fillConvexPoly(frame.labels, points, cv::Scalar(label), cv::LINE_8, kSubPixelBits);
       for (size_t k = 0; k < projected.size(); ++k) {
         candidate_edges.push_back({projected[k], projected[(k + 1) % projected.size()], static_cast<int>(entry.second)});

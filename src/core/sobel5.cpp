@@ -36,16 +36,17 @@ void verticalPass(const int16_t* __restrict r0, const int16_t* __restrict r1, co
   }
 }
 
-// Horizontal passes and the squared magnitude, kept where it beats the other channels.
+// Horizontal passes and the squared magnitude, kept where it beats the other channels
+// (`best` starts at 0). Branch-free so it vectorises.
 RLE_VISION_HOT
 void horizontalPass(const int16_t* __restrict smooth, const int16_t* __restrict derivative, int width,
-                    bool first_channel, int32_t* __restrict best) {
+                    int32_t* __restrict best) {
   for (int x = 0; x < width; ++x) {
     const int32_t gx = smooth[x + 4] - smooth[x] + 2 * (smooth[x + 3] - smooth[x + 1]);
     const int32_t gy = derivative[x] + derivative[x + 4] + 4 * (derivative[x + 1] + derivative[x + 3]) +
                        6 * derivative[x + 2];
     const int32_t m2 = gx * gx + gy * gy;
-    best[x] = first_channel ? m2 : std::max(best[x], m2);
+    best[x] = best[x] > m2 ? best[x] : m2;
   }
 }
 
@@ -53,7 +54,7 @@ RLE_VISION_HOT
 void scaleToBytes(const int32_t* __restrict m2, int width, float scale, uint8_t* __restrict out) {
   for (int x = 0; x < width; ++x) {
     const float v = std::sqrt(static_cast<float>(m2[x])) * scale + 0.5f;
-    out[x] = static_cast<uint8_t>(v >= 255.f ? 255.f : v);
+    out[x] = static_cast<uint8_t>(static_cast<int32_t>(std::min(v, 255.f)));
   }
 }
 
@@ -80,10 +81,11 @@ void Sobel5::run(const cv::Mat& image, Sink sink) {
   for (int k = -2; k <= 1; ++k) load(k, (k + 5) % 5);
   for (int y = 0; y < image.rows; ++y) {
     load(y + 2, (y + 2) % 5);
+    std::fill(best_.begin(), best_.end(), 0);
     for (int c = 0; c < channels_; ++c) {
       verticalPass(ring((y + 3) % 5, c), ring((y + 4) % 5, c), ring(y % 5, c), ring((y + 1) % 5, c),
                    ring((y + 2) % 5, c), padded, smooth_.data(), derivative_.data());
-      horizontalPass(smooth_.data(), derivative_.data(), width_, c == 0, best_.data());
+      horizontalPass(smooth_.data(), derivative_.data(), width_, best_.data());
     }
     sink(y, best_.data());
   }

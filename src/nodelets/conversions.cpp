@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <cv_bridge/cv_bridge.h>
+
 namespace rle_vision {
 
 bool viewImage(const sensor_msgs::Image& msg, PixelFormat* format, cv::Mat* mat, std::string* error) {
@@ -101,6 +103,39 @@ Line lineToMsg(const ImageLine& line, double x1, double y1, double x2, double y2
   l.votes = votes;
   l.support = support;
   return l;
+}
+
+LandmarkOptions optionsFromConfig(const LandmarkConfig& c) {
+  LandmarkOptions o;
+  o.objects.gray_threshold = static_cast<uint8_t>(c.gray_threshold);
+  o.objects.sharp_threshold = static_cast<uint8_t>(c.sharp_threshold);
+  o.objects.min_object_px = static_cast<uint32_t>(c.min_object_px);
+  o.objects.thin = c.thin_edges;
+  o.hough.min_votes = c.min_votes;
+  o.hough.min_line_length_px = c.min_line_length_px;
+  o.hough.sampling_margin = c.sampling_margin;
+  o.hough.max_samples_per_object = c.max_samples_per_object;
+  o.hough.max_rounds = c.max_rounds;
+  o.hough.max_failed_peaks = c.max_failed_peaks;
+  o.hough.min_pair_distance_px = c.min_pair_distance_px;
+  o.hough.theta_bin_deg = c.theta_bin_deg;
+  o.hough.intercept_bin_px = c.intercept_bin_px;
+  o.hough.peak_angle_deg = c.peak_angle_deg;
+  o.hough.peak_distance_px = c.peak_distance_px;
+  o.hough.fit_distance_px = c.fit_distance_px;
+  o.hough.max_gap_px = c.max_gap_px;
+  o.hough.min_support_ratio = c.min_support_ratio;
+  o.hough.seed = static_cast<uint64_t>(c.seed);
+  o.horizon.min_piece_length_px = c.horizon_min_piece_px;
+  o.horizon.max_angle_deg = c.horizon_max_angle_deg;
+  o.horizon.merge_angle_deg = c.horizon_merge_angle_deg;
+  o.horizon.merge_distance_px = c.horizon_merge_distance_px;
+  o.horizon.min_coverage = c.horizon_min_coverage;
+  return o;
+}
+
+sensor_msgs::ImagePtr debugImageMsg(const std_msgs::Header& header, const cv::Mat& bgr) {
+  return cv_bridge::CvImage(header, "bgr8", bgr).toImageMsg();
 }
 
 bool cameraFromInfo(const sensor_msgs::CameraInfo& info, PinholeCamera* camera) {

@@ -9,11 +9,13 @@
 #include <sensor_msgs/Image.h>
 
 #include "rle_vision/Blob.h"
+#include "rle_vision/LandmarkConfig.h"
 #include "rle_vision/ColorRangeArray.h"
 #include "rle_vision/Line.h"
 #include "rle_vision/blob_tracker.h"
 #include "rle_vision/camera_model.h"
 #include "rle_vision/color_class.h"
+#include "rle_vision/landmark_detector.h"
 #include "rle_vision/line_geometry.h"
 #include "rle_vision/pixel_format.h"
 
@@ -30,6 +32,13 @@ ColorRange colorRangeToMsg(const ColorClass& c);
 
 Blob blobToMsg(const TrackedBlob& blob, const std::string& color_name);
 Line lineToMsg(const ImageLine& line, double x1, double y1, double x2, double y2, uint32_t votes, uint32_t support);
+
+// The Landmark nodelet's dynamic parameters as core options (edge_gain belongs to the
+// EdgeDetector and keeps its default).
+LandmarkOptions optionsFromConfig(const LandmarkConfig& config);
+
+// A bgr8 image message (copied) with the given header.
+sensor_msgs::ImagePtr debugImageMsg(const std_msgs::Header& header, const cv::Mat& bgr);
 
 // The pinhole model of a camera_info (K only); false when K is unusable.
 bool cameraFromInfo(const sensor_msgs::CameraInfo& info, PinholeCamera* camera);

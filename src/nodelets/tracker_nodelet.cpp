@@ -15,11 +15,11 @@
 #include <ros/ros.h>
 
 #include "conversions.h"
-#include "debug_drawing.h"
 #include "rle_vision/BlobArray.h"
 #include "rle_vision/ColorRangeArray.h"
 #include "rle_vision/TrackerConfig.h"
 #include "rle_vision/config_files.h"
+#include "rle_vision/overlay.h"
 #include "rle_vision/segmenter.h"
 #include "rle_vision/shared_color_table.h"
 
@@ -189,7 +189,8 @@ void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
 
   if (pub_debug_.getNumSubscribers() > 0) {
     cv::Mat canvas = toDisplayBgr(image, format);
-    drawBlobs(&canvas, *out, *table);
+    drawBlobs(&canvas, blobs_, *table);
+    drawColorSwatches(&canvas, *table);
     pub_debug_.publish(debugImageMsg(msg->header, canvas));
   }
 }

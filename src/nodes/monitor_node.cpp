@@ -1,6 +1,9 @@
 // rle_vision_monitor: one summary line per second for `make demo`: frame rate, blobs per class,
-// tracker time per frame and image-stamp-to-blobs latency. Exits after ~duration_s (> 0).
+// tracker time per frame, image-stamp-to-blobs latency, and (when the landmark node runs)
+// lines per frame, the horizon's roll and pitch and the landmark time. Exits after
+// ~duration_s (> 0).
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <mutex>
@@ -9,6 +12,8 @@
 #include <ros/ros.h>
 
 #include "rle_vision/BlobArray.h"
+#include "rle_vision/Horizon.h"
+#include "rle_vision/LineArray.h"
 
 namespace rle_vision {
 
@@ -18,6 +23,8 @@ class Monitor {
     ros::NodeHandle nh, pnh("~");
     pnh.param("duration_s", duration_s_, 0.0);
     sub_blobs_ = nh.subscribe("blobs", 10, &Monitor::blobsCb, this);
+    sub_lines_ = nh.subscribe("lines", 10, &Monitor::linesCb, this);
+    sub_horizon_ = nh.subscribe("horizon", 10, &Monitor::horizonCb, this);
     start_ = ros::WallTime::now();
     timer_ = nh.createWallTimer(ros::WallDuration(1.0), &Monitor::report, this);
   }
@@ -32,6 +39,22 @@ class Monitor {
     latencies_ms_.push_back(latency_ms);
     last_counts_.clear();
     for (const Blob& b : msg->blobs) ++last_counts_[b.color];
+  }
+
+  void linesCb(const LineArrayConstPtr& msg) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++landmark_frames_;
+    lines_ += msg->lines.size();
+    landmark_ms_sum_ += msg->processing_time_ms;
+  }
+
+  void horizonCb(const HorizonConstPtr& msg) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++horizon_frames_;
+    if (!msg->found) return;
+    ++horizon_found_;
+    roll_deg_ = msg->roll * 180.0 / M_PI;
+    pitch_deg_ = msg->pitch * 180.0 / M_PI;
   }
 
   static double percentile(std::vector<double> v, double p) {
@@ -55,10 +78,21 @@ class Monitor {
       } else {
         std::printf(" | waiting for %s", sub_blobs_.getTopic().c_str());
       }
+      if (landmark_frames_ > 0) {
+        std::printf(" | %.1f lines/frame, landmark %.2f ms", static_cast<double>(lines_) / landmark_frames_,
+                    landmark_ms_sum_ / landmark_frames_);
+      }
+      if (horizon_frames_ > 0) {
+        std::printf(" | horizon %d%%", 100 * horizon_found_ / horizon_frames_);
+        if (horizon_found_ > 0) std::printf(" roll %+.1f pitch %+.1f deg", roll_deg_, pitch_deg_);
+      }
       std::printf("\n");
       std::fflush(stdout);
       frames_ = 0;
       tracker_ms_sum_ = tracker_ms_max_ = 0;
+      landmark_frames_ = horizon_frames_ = horizon_found_ = 0;
+      lines_ = 0;
+      landmark_ms_sum_ = 0;
       latencies_ms_.clear();
     }
     if (duration_s_ > 0 && elapsed >= duration_s_ - 0.05) {
@@ -69,7 +103,7 @@ class Monitor {
     }
   }
 
-  ros::Subscriber sub_blobs_;
+  ros::Subscriber sub_blobs_, sub_lines_, sub_horizon_;
   ros::WallTimer timer_;
   ros::WallTime start_;
   double duration_s_ = 0;
@@ -78,6 +112,9 @@ class Monitor {
   double tracker_ms_sum_ = 0, tracker_ms_max_ = 0;
   std::vector<double> latencies_ms_;
   std::map<std::string, int> last_counts_;
+  int landmark_frames_ = 0, horizon_frames_ = 0, horizon_found_ = 0;
+  size_t lines_ = 0;
+  double landmark_ms_sum_ = 0, roll_deg_ = 0, pitch_deg_ = 0;
 };
 
 }  // namespace rle_vision

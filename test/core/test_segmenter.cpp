@@ -58,6 +58,7 @@ class SimulatedScene : public ::testing::Test {
 TEST_F(SimulatedScene, NoiseFreeBlobsEqualTheRenderedMasksExactly) {
   scene_.noise_sigma = 0;
   scene_.blur_sigma_px = 0;
+  scene_.antialias = false;  // hard edges: the image's pixels are exactly the label masks
   const SceneSimulator simulator(scene_);
   Segmenter segmenter;
   std::vector<Region> regions;
@@ -122,6 +123,7 @@ TEST_F(SimulatedScene, CentroidErrorBelowOnePixelWithBlurAndSensorNoise) {
 TEST_F(SimulatedScene, Yuv422FrameGivesTheSameBlobs) {
   scene_.noise_sigma = 0;
   scene_.blur_sigma_px = 0;
+  scene_.antialias = false;
   const SimFrame f = SceneSimulator(scene_).render(0, 0.0);
   Segmenter segmenter;
   std::vector<Region> from_bgr, from_uyvy;

@@ -1,6 +1,8 @@
-#include "debug_drawing.h"
+#include "rle_vision/overlay.h"
 
-#include <cv_bridge/cv_bridge.h>
+#include <cmath>
+#include <cstdio>
+
 #include <opencv2/imgproc.hpp>
 
 namespace rle_vision {
@@ -40,15 +42,15 @@ cv::Mat toDisplayBgr(const cv::Mat& image, PixelFormat format) {
   return bgr;
 }
 
-void drawBlobs(cv::Mat* canvas, const BlobArray& blobs, const ColorTable& table) {
-  for (const Blob& b : blobs.blobs) {
-    const int k = table.indexOf(b.color);
-    const cv::Scalar colour = k >= 0 ? displayBgr(table.classes()[k]) : cv::Scalar(255, 255, 255);
-    const cv::Rect box(cv::Point(b.left, b.top), cv::Point(b.right + 1, b.bottom + 1));
-    cv::rectangle(*canvas, box, colour, 2);
-    cv::drawMarker(*canvas, cv::Point(cvRound(b.cx), cvRound(b.cy)), colour, cv::MARKER_CROSS, 8, 1);
-    const std::string text = std::to_string(b.id) + " " + b.color;
-    cv::putText(*canvas, text, cv::Point(b.left, std::max(10, static_cast<int>(b.top) - 4)),
+void drawBlobs(cv::Mat* canvas, const std::vector<TrackedBlob>& blobs, const ColorTable& table) {
+  for (const TrackedBlob& b : blobs) {
+    const Region& r = b.region;
+    if (r.label < 1 || r.label > table.size()) continue;
+    const ColorClass& c = table.classes()[r.label - 1];
+    const cv::Scalar colour = displayBgr(c);
+    cv::rectangle(*canvas, cv::Rect(cv::Point(r.left, r.top), cv::Point(r.right + 1, r.bottom + 1)), colour, 2);
+    cv::drawMarker(*canvas, cv::Point(cvRound(r.cx), cvRound(r.cy)), colour, cv::MARKER_CROSS, 8, 1);
+    cv::putText(*canvas, std::to_string(b.id) + " " + c.name, cv::Point(r.left, std::max(10, r.top - 4)),
                 cv::FONT_HERSHEY_SIMPLEX, 0.4, colour, 1, cv::LINE_AA);
   }
 }
@@ -70,8 +72,21 @@ void drawColorSwatches(cv::Mat* canvas, const ColorTable& table) {
   }
 }
 
-sensor_msgs::ImagePtr debugImageMsg(const std_msgs::Header& header, const cv::Mat& bgr) {
-  return cv_bridge::CvImage(header, "bgr8", bgr).toImageMsg();
+void drawLandmarks(cv::Mat* canvas, const std::vector<DetectedLine>& lines, const HorizonEstimate& horizon,
+                   double roll, double pitch) {
+  for (const DetectedLine& l : lines) {
+    cv::line(*canvas, cv::Point2d(l.x1, l.y1), cv::Point2d(l.x2, l.y2), cv::Scalar(0, 255, 0), 1, cv::LINE_AA);
+  }
+  if (!horizon.found) {
+    cv::putText(*canvas, "no horizon", cv::Point(6, 16), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 200, 255), 1, cv::LINE_AA);
+    return;
+  }
+  cv::line(*canvas, cv::Point2d(horizon.x1, horizon.y1), cv::Point2d(horizon.x2, horizon.y2), cv::Scalar(255, 255, 0), 2,
+           cv::LINE_AA);
+  char text[96];
+  std::snprintf(text, sizeof(text), "horizon: roll %.1f deg, pitch %s, confidence %.2f", roll * 180 / M_PI,
+                std::isfinite(pitch) ? cv::format("%.1f deg", pitch * 180 / M_PI).c_str() : "n/a", horizon.confidence);
+  cv::putText(*canvas, text, cv::Point(6, 16), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(255, 255, 0), 1, cv::LINE_AA);
 }
 
 }  // namespace rle_vision

@@ -1,0 +1,318 @@
+// rle_vision/Landmark: the low-priority landmark node. Edge images go into a one-slot mailbox
+// (a newer frame replaces an unprocessed one, which counts as dropped); a worker thread at low
+// OS priority runs the RLE Hough and the horizon and publishes lines, horizon, rviz markers
+// and a debug overlay. It never queues frames and never holds up the manager's other
+// nodelets (the tracker).
+#include <pthread.h>
+#include <sched.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include <cv_bridge/cv_bridge.h>
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <dynamic_reconfigure/server.h>
+#include <image_transport/image_transport.h>
+#include <nodelet/nodelet.h>
+#include <opencv2/imgproc.hpp>
+#include <pluginlib/class_list_macros.hpp>
+#include <ros/ros.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "conversions.h"
+#include "processing_stats.h"
+#include "rle_vision/Horizon.h"
+#include "rle_vision/LandmarkConfig.h"
+#include "rle_vision/LineArray.h"
+#include "rle_vision/landmark_detector.h"
+#include "rle_vision/overlay.h"
+
+namespace rle_vision {
+
+namespace {
+
+geometry_msgs::Point backProject(const PinholeCamera& camera, double u, double v) {
+  // The ray through (u, v) at 1 m depth in the optical frame: rviz's camera view overlays it
+  // on the pixel.
+  geometry_msgs::Point p;
+  p.x = (u - camera.cx) / camera.fx;
+  p.y = (v - camera.cy) / camera.fy;
+  p.z = 1.0;
+  return p;
+}
+
+}  // namespace
+
+class LandmarkNodelet : public nodelet::Nodelet {
+ public:
+  ~LandmarkNodelet() override;
+
+ private:
+  void onInit() override;
+  void connectCb();
+  void edgesCb(const sensor_msgs::ImageConstPtr& msg);
+  void imageCb(const sensor_msgs::ImageConstPtr& msg);
+  void cameraInfoCb(const sensor_msgs::CameraInfoConstPtr& msg);
+  void reconfigureCb(LandmarkConfig& config, uint32_t level);
+  void workerLoop();
+  void process(const sensor_msgs::ImageConstPtr& edges_msg);
+  void publishMarkers(const std_msgs::Header& header, const LandmarkResult& result, const PinholeCamera& camera);
+
+  std::shared_ptr<image_transport::ImageTransport> it_;
+  image_transport::Subscriber sub_edges_, sub_image_;
+  ros::Subscriber sub_info_;
+  ros::Publisher pub_lines_, pub_horizon_, pub_markers_;
+  image_transport::Publisher pub_debug_;
+  std::mutex connect_mutex_;
+  bool low_priority_ = true;
+
+  std::mutex config_mutex_;
+  LandmarkOptions options_;
+  std::shared_ptr<dynamic_reconfigure::Server<LandmarkConfig>> reconfigure_server_;
+
+  // Latest camera_info and colour image (for pitch, markers and the overlay).
+  std::mutex inputs_mutex_;
+  sensor_msgs::CameraInfoConstPtr camera_info_;
+  sensor_msgs::ImageConstPtr colour_;
+
+  // The one-slot mailbox and its worker.
+  std::mutex mailbox_mutex_;
+  std::condition_variable mailbox_cv_;
+  sensor_msgs::ImageConstPtr mailbox_;
+  bool stop_ = false;
+  std::thread worker_;
+  std::atomic<bool> warned_no_camera_info_{false};
+
+  std::shared_ptr<diagnostic_updater::Updater> diagnostics_;
+  ros::WallTimer diagnostics_timer_;
+  ProcessingStats stats_;
+  LandmarkDetector detector_;  // used by the worker only
+};
+
+LandmarkNodelet::~LandmarkNodelet() {
+  {
+    std::lock_guard<std::mutex> lock(mailbox_mutex_);
+    stop_ = true;
+  }
+  mailbox_cv_.notify_all();
+  if (worker_.joinable()) worker_.join();
+}
+
+void LandmarkNodelet::onInit() {
+  ros::NodeHandle& nh = getNodeHandle();
+  ros::NodeHandle& pnh = getPrivateNodeHandle();
+  it_ = std::make_shared<image_transport::ImageTransport>(nh);
+  pnh.param("low_priority", low_priority_, true);
+  reconfigure_server_ = std::make_shared<dynamic_reconfigure::Server<LandmarkConfig>>(pnh);
+  reconfigure_server_->setCallback([this](LandmarkConfig& config, uint32_t level) { reconfigureCb(config, level); });
+
+  diagnostics_ = std::make_shared<diagnostic_updater::Updater>(nh, pnh, getName());
+  diagnostics_->setHardwareID("none");
+  diagnostics_->add("landmark", [this](diagnostic_updater::DiagnosticStatusWrapper& s) { stats_.report(s, 30.0); });
+  diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
+
+  worker_ = std::thread(&LandmarkNodelet::workerLoop, this);
+
+  std::lock_guard<std::mutex> lock(connect_mutex_);
+  const ros::SubscriberStatusCallback connect_cb = [this](const ros::SingleSubscriberPublisher&) { connectCb(); };
+  const image_transport::SubscriberStatusCallback image_connect_cb =
+      [this](const image_transport::SingleSubscriberPublisher&) { connectCb(); };
+  pub_lines_ = nh.advertise<LineArray>("lines", 5, connect_cb, connect_cb);
+  pub_horizon_ = nh.advertise<Horizon>("horizon", 5, connect_cb, connect_cb);
+  pub_markers_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 2, connect_cb, connect_cb);
+  pub_debug_ = image_transport::ImageTransport(pnh).advertise("debug_image", 1, image_connect_cb, image_connect_cb);
+  sub_info_ = nh.subscribe("camera_info", 1, &LandmarkNodelet::cameraInfoCb, this);
+}
+
+void LandmarkNodelet::reconfigureCb(LandmarkConfig& config, uint32_t /*level*/) {
+  const LandmarkOptions candidate = optionsFromConfig(config);
+  const std::string problem = validateLandmarkOptions(candidate);
+  std::lock_guard<std::mutex> lock(config_mutex_);
+  if (!problem.empty()) {
+    NODELET_WARN("refusing landmark parameters: %s; keeping the previous ones", problem.c_str());
+    return;
+  }
+  options_ = candidate;
+}
+
+void LandmarkNodelet::connectCb() {
+  std::lock_guard<std::mutex> lock(connect_mutex_);
+  const bool wanted = pub_lines_.getNumSubscribers() > 0 || pub_horizon_.getNumSubscribers() > 0 ||
+                      pub_markers_.getNumSubscribers() > 0 || pub_debug_.getNumSubscribers() > 0;
+  if (!wanted) {
+    sub_edges_.shutdown();
+  } else if (!sub_edges_) {
+    sub_edges_ = it_->subscribe("edges", 1, &LandmarkNodelet::edgesCb, this);
+  }
+  // The colour image only feeds the overlay.
+  if (pub_debug_.getNumSubscribers() == 0) {
+    sub_image_.shutdown();
+  } else if (!sub_image_) {
+    sub_image_ = it_->subscribe("image_raw", 1, &LandmarkNodelet::imageCb, this);
+  }
+}
+
+void LandmarkNodelet::cameraInfoCb(const sensor_msgs::CameraInfoConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(inputs_mutex_);
+  camera_info_ = msg;
+}
+
+void LandmarkNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
+  std::lock_guard<std::mutex> lock(inputs_mutex_);
+  colour_ = msg;
+}
+
+void LandmarkNodelet::edgesCb(const sensor_msgs::ImageConstPtr& msg) {
+  {
+    std::lock_guard<std::mutex> lock(mailbox_mutex_);
+    if (mailbox_) stats_.addDrop();  // the worker did not get to the previous frame
+    mailbox_ = msg;
+  }
+  mailbox_cv_.notify_one();
+}
+
+void LandmarkNodelet::workerLoop() {
+  if (low_priority_) {
+    // This thread only: nice 19, and SCHED_IDLE where the kernel allows it.
+    const bool niced = setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 19) == 0;
+    sched_param idle{};
+    const bool idled = pthread_setschedparam(pthread_self(), SCHED_IDLE, &idle) == 0;
+    NODELET_INFO("landmark worker runs at low priority (nice 19: %s, SCHED_IDLE: %s)", niced ? "yes" : "no",
+                 idled ? "yes" : "no");
+  }
+  while (true) {
+    sensor_msgs::ImageConstPtr msg;
+    {
+      std::unique_lock<std::mutex> lock(mailbox_mutex_);
+      mailbox_cv_.wait(lock, [this] { return stop_ || mailbox_; });
+      if (stop_) return;
+      msg.swap(mailbox_);
+    }
+    try {
+      process(msg);
+    } catch (const std::exception& e) {
+      NODELET_ERROR_THROTTLE(5.0, "landmark processing failed: %s", e.what());
+    }
+  }
+}
+
+void LandmarkNodelet::process(const sensor_msgs::ImageConstPtr& msg) {
+  const auto start = std::chrono::steady_clock::now();
+  PixelFormat format;
+  cv::Mat edges;
+  std::string error;
+  if (!viewImage(*msg, &format, &edges, &error) || format != PixelFormat::MONO8) {
+    NODELET_ERROR_THROTTLE(5.0, "dropping edge image on %s: %s", sub_edges_.getTopic().c_str(),
+                           error.empty() ? ("needs mono8, got " + msg->encoding).c_str() : error.c_str());
+    return;
+  }
+  LandmarkOptions options;
+  {
+    std::lock_guard<std::mutex> lock(config_mutex_);
+    options = options_;
+  }
+  sensor_msgs::CameraInfoConstPtr info;
+  sensor_msgs::ImageConstPtr colour;
+  {
+    std::lock_guard<std::mutex> lock(inputs_mutex_);
+    info = camera_info_;
+    colour = colour_;
+  }
+  PinholeCamera camera;
+  const bool have_camera = info && cameraFromInfo(*info, &camera) && camera.width == edges.cols &&
+                           camera.height == edges.rows;
+  if (!have_camera && !warned_no_camera_info_.exchange(true)) {
+    NODELET_WARN("no usable camera_info for %dx%d images on %s: horizon pitch will be NaN and markers are off",
+                 edges.cols, edges.rows, sub_info_.getTopic().c_str());
+  }
+
+  LandmarkResult result;
+  detector_.detectInEdges(edges, options, &result);
+
+  auto lines = boost::make_shared<LineArray>();
+  lines->header = msg->header;
+  for (const DetectedLine& l : result.lines) {
+    lines->lines.push_back(lineToMsg(l.line, l.x1, l.y1, l.x2, l.y2, l.votes, l.support));
+  }
+  auto horizon = boost::make_shared<Horizon>();
+  horizon->header = msg->header;
+  horizon->found = result.horizon.found;
+  horizon->roll = horizon->pitch = std::numeric_limits<float>::quiet_NaN();
+  if (result.horizon.found) {
+    const HorizonEstimate& h = result.horizon;
+    horizon->line = lineToMsg(h.line, h.x1, h.y1, h.x2, h.y2, h.votes, h.support);
+    horizon->confidence = static_cast<float>(h.confidence);
+    double roll = 0, pitch = 0;
+    horizonAttitude(h.line, have_camera ? &camera : nullptr, &roll, &pitch);
+    horizon->roll = static_cast<float>(roll);
+    horizon->pitch = static_cast<float>(pitch);
+  }
+  lines->processing_time_ms = static_cast<float>(
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  pub_lines_.publish(lines);
+  pub_horizon_.publish(horizon);
+  if (have_camera && pub_markers_.getNumSubscribers() > 0) publishMarkers(msg->header, result, camera);
+  if (pub_debug_.getNumSubscribers() > 0) {
+    cv::Mat canvas;
+    PixelFormat colour_format;
+    cv::Mat colour_view;
+    if (colour && colour->header.stamp == msg->header.stamp && viewImage(*colour, &colour_format, &colour_view, &error)) {
+      canvas = toDisplayBgr(colour_view, colour_format);
+    } else {
+      cv::cvtColor(edges, canvas, cv::COLOR_GRAY2BGR);
+    }
+    drawLandmarks(&canvas, result.lines, result.horizon, horizon->roll, horizon->pitch);
+    pub_debug_.publish(debugImageMsg(msg->header, canvas));
+  }
+  stats_.addFrame(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+}
+
+void LandmarkNodelet::publishMarkers(const std_msgs::Header& header, const LandmarkResult& result,
+                                     const PinholeCamera& camera) {
+  visualization_msgs::MarkerArray array;
+  visualization_msgs::Marker lines;
+  lines.header = header;
+  lines.ns = "lines";
+  lines.id = 0;
+  lines.type = visualization_msgs::Marker::LINE_LIST;
+  lines.action = visualization_msgs::Marker::ADD;
+  lines.pose.orientation.w = 1.0;
+  lines.scale.x = 0.003;
+  lines.color.g = 1.0;
+  lines.color.a = 1.0;
+  for (const DetectedLine& l : result.lines) {
+    lines.points.push_back(backProject(camera, l.x1, l.y1));
+    lines.points.push_back(backProject(camera, l.x2, l.y2));
+  }
+  if (lines.points.empty()) lines.action = visualization_msgs::Marker::DELETE;
+  array.markers.push_back(lines);
+  visualization_msgs::Marker horizon = lines;
+  horizon.ns = "horizon";
+  horizon.type = visualization_msgs::Marker::LINE_STRIP;
+  horizon.scale.x = 0.008;
+  horizon.color.r = 0.0;
+  horizon.color.g = 1.0;
+  horizon.color.b = 1.0;
+  horizon.points.clear();
+  horizon.action = visualization_msgs::Marker::DELETE;
+  if (result.horizon.found) {
+    horizon.action = visualization_msgs::Marker::ADD;
+    horizon.points.push_back(backProject(camera, result.horizon.x1, result.horizon.y1));
+    horizon.points.push_back(backProject(camera, result.horizon.x2, result.horizon.y2));
+  }
+  array.markers.push_back(horizon);
+  pub_markers_.publish(array);
+}
+
+}  // namespace rle_vision
+
+PLUGINLIB_EXPORT_CLASS(rle_vision::LandmarkNodelet, nodelet::Nodelet)

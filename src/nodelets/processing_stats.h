@@ -1,0 +1,59 @@
+// Per-nodelet processing statistics for diagnostics: input rate, time per frame (mean and
+// max), frames dropped. Thread-safe; each report covers the time since the previous one.
+#pragma once
+
+#include <algorithm>
+#include <mutex>
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/time.h>
+
+namespace rle_vision {
+
+class ProcessingStats {
+ public:
+  void addFrame(double processing_ms) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++frames_;
+    sum_ms_ += processing_ms;
+    max_ms_ = std::max(max_ms_, processing_ms);
+  }
+  void addDrop() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++dropped_;
+    ++dropped_total_;
+  }
+
+  // Fills `status`; WARN when frames were dropped or the mean time exceeds warn_ms.
+  void report(diagnostic_updater::DiagnosticStatusWrapper& status, double warn_ms) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const ros::WallTime now = ros::WallTime::now();
+    const double seconds = last_report_.isZero() ? 0.0 : (now - last_report_).toSec();
+    last_report_ = now;
+    const double mean_ms = frames_ ? sum_ms_ / frames_ : 0.0;
+    status.add("input rate (Hz)", seconds > 0 ? frames_ / seconds : 0.0);
+    status.add("processing time mean (ms)", mean_ms);
+    status.add("processing time max (ms)", max_ms_);
+    status.add("frames dropped (since last report)", dropped_);
+    status.add("frames dropped (total)", dropped_total_);
+    if (dropped_ > 0) {
+      status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN, "%d frames dropped (processing slower than input)", dropped_);
+    } else if (mean_ms > warn_ms) {
+      status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN, "mean processing time %.2f ms above %.2f ms", mean_ms, warn_ms);
+    } else if (frames_ == 0) {
+      status.summary(diagnostic_msgs::DiagnosticStatus::OK, "no input (subscribed lazily: nobody listens, or no images)");
+    } else {
+      status.summaryf(diagnostic_msgs::DiagnosticStatus::OK, "%.2f ms per frame", mean_ms);
+    }
+    frames_ = dropped_ = 0;
+    sum_ms_ = max_ms_ = 0;
+  }
+
+ private:
+  std::mutex mutex_;
+  int frames_ = 0, dropped_ = 0, dropped_total_ = 0;
+  double sum_ms_ = 0, max_ms_ = 0;
+  ros::WallTime last_report_;
+};
+
+}  // namespace rle_vision

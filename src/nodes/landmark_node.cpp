@@ -1,0 +1,4 @@
+// The Landmark nodelet as a plain node.
+#include "nodelet_runner.h"
+
+int main(int argc, char** argv) { return rle_vision::runNodelet(argc, argv, "landmark", "rle_vision/Landmark"); }
