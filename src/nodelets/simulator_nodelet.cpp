@@ -151,6 +151,9 @@ SceneTruth SimulatorNodelet::truthMsg(const SimFrame& frame, const std_msgs::Hea
   }
   truth.horizon = lineToMsg(frame.horizon, x1, y1, x2, y2, 0, 0);
   truth.horizon_visible = frame.horizon_visible;
+  for (const EdgeTruth& e : frame.edges) {
+    truth.edges.push_back(lineToMsg(lineThroughPoints(e.x1, e.y1, e.x2, e.y2), e.x1, e.y1, e.x2, e.y2, 0, 0));
+  }
   truth.camera_roll = static_cast<float>(frame.pose.roll);
   truth.camera_pitch = static_cast<float>(frame.pose.pitch);
   truth.camera_yaw = static_cast<float>(frame.pose.yaw);

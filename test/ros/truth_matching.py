@@ -28,3 +28,31 @@ def whole_objects(truth, min_area):
     piece, touching no box of the same colour."""
     return [o for o in truth.objects
             if o.area >= min_area and o.pieces == 1 and not o.touches_same_color]
+
+
+def segment_length(line):
+    return math.hypot(line.x2 - line.x1, line.y2 - line.y1)
+
+
+def line_angle_difference(a, b):
+    d = abs(a - b) % math.pi
+    return min(d, math.pi - d)
+
+
+def near_segment(detected, truth, angle_tol_deg, distance_tol_px):
+    """The same edge judged at the truth segment: angles within the tolerance, the detected
+    line within distance_tol_px of the truth's midpoint, the segments overlapping along it
+    (as bench/line_matching.h nearSegment)."""
+    if line_angle_difference(detected.theta, truth.theta) > math.radians(angle_tol_deg):
+        return False
+    mx, my = 0.5 * (truth.x1 + truth.x2), 0.5 * (truth.y1 + truth.y2)
+    # Distance of the truth midpoint from the detected line (normal (-sin, cos)).
+    nx, ny = -math.sin(detected.theta), math.cos(detected.theta)
+    if abs((mx - detected.x1) * nx + (my - detected.y1) * ny) > distance_tol_px:
+        return False
+    length = segment_length(truth)
+    ux, uy = (truth.x2 - truth.x1) / length, (truth.y2 - truth.y1) / length
+    a0 = (detected.x1 - truth.x1) * ux + (detected.y1 - truth.y1) * uy
+    a1 = (detected.x2 - truth.x1) * ux + (detected.y2 - truth.y1) * uy
+    a0, a1 = min(a0, a1), max(a0, a1)
+    return a1 > 0 and a0 < length
