@@ -1,0 +1,416 @@
+#include "rle_vision/color_learning.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <opencv2/imgproc.hpp>
+
+#include "rle_vision/color_convert.h"
+
+namespace rle_vision {
+namespace {
+
+// Where a line crosses another, and whether that point lies on (or near the ends of) both
+// segments.
+bool meetNear(const DetectedLine& a, const DetectedLine& b, double reach, cv::Point2d* p) {
+  double a1, b1, c1, a2, b2, c2;
+  homogeneousFromLine(a.line, &a1, &b1, &c1);
+  homogeneousFromLine(b.line, &a2, &b2, &c2);
+  const double det = a1 * b2 - a2 * b1;
+  if (std::fabs(det) < 1e-6) return false;
+  p->x = (b1 * c2 - b2 * c1) / det;
+  p->y = (a2 * c1 - a1 * c2) / det;
+  auto within = [&](const DetectedLine& l) {
+    const double dx = l.x2 - l.x1, dy = l.y2 - l.y1, length2 = dx * dx + dy * dy;
+    const double t = ((p->x - l.x1) * dx + (p->y - l.y1) * dy) / length2;
+    const double margin = reach / std::sqrt(length2);
+    return t >= -margin && t <= 1 + margin;
+  };
+  return within(a) && within(b);
+}
+
+bool overlaps(const ColorStats& a, const ColorStats& b) {
+  for (int ch = 0; ch < 3; ++ch) {
+    if (a.hi[ch] < b.lo[ch] || b.hi[ch] < a.lo[ch]) return false;
+  }
+  return true;
+}
+
+bool wrapped(const ColorClass& c) { return c.min[0] > c.max[0] || c.min[1] > c.max[1] || c.min[2] > c.max[2]; }
+
+// The pixels of `mask` in `roi` of the BGR image, in `space`.
+void pixelsIn(const cv::Mat& bgr, const cv::Rect& roi, const cv::Mat& mask, ColorSpace space,
+              std::vector<Channels>* out) {
+  out->clear();
+  const cv::Mat converted = space == ColorSpace::HSV ? convertBgrImage(bgr(roi).clone(), ColorSpace::HSV) : cv::Mat();
+  for (int y = 0; y < roi.height; ++y) {
+    const uint8_t* m = mask.ptr<uint8_t>(y);
+    const cv::Vec3b* p = bgr.ptr<cv::Vec3b>(roi.y + y) + roi.x;
+    for (int x = 0; x < roi.width; ++x) {
+      if (!m[x]) continue;
+      if (space == ColorSpace::HSV) {
+        const cv::Vec3b h = converted.at<cv::Vec3b>(y, x);
+        out->push_back(Channels{{h[0], h[1], h[2]}});
+      } else if (space == ColorSpace::RGB) {
+        out->push_back(Channels{{p[x][2], p[x][1], p[x][0]}});
+      } else {
+        out->push_back(yuvFromRgb(p[x][2], p[x][1], p[x][0]));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<cv::Point2d> regionFromLines(const std::vector<const DetectedLine*>& lines) {
+  if (lines.size() < 2) return {};
+  std::vector<cv::Point2f> points;
+  for (const DetectedLine* l : lines) {
+    points.emplace_back(static_cast<float>(l->x1), static_cast<float>(l->y1));
+    points.emplace_back(static_cast<float>(l->x2), static_cast<float>(l->y2));
+  }
+  // Corners where lines meet close the region where the segments fall short of them.
+  for (size_t i = 0; i < lines.size(); ++i) {
+    for (size_t j = i + 1; j < lines.size(); ++j) {
+      cv::Point2d p;
+      if (meetNear(*lines[i], *lines[j], 10.0, &p)) points.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y));
+    }
+  }
+  std::vector<cv::Point2f> hull;
+  cv::convexHull(points, hull);
+  if (hull.size() < 3) return {};
+  return std::vector<cv::Point2d>(hull.begin(), hull.end());
+}
+
+bool colorStats(const std::vector<Channels>& pixels, ColorStats* s, double outlier_distance,
+                uint32_t large_object_px, double small_object_margin) {
+  if (pixels.empty()) return false;
+  double mean[3] = {0, 0, 0};
+  for (const Channels& p : pixels) {
+    for (int ch = 0; ch < 3; ++ch) mean[ch] += p[ch];
+  }
+  for (double& m : mean) m /= static_cast<double>(pixels.size());
+  // Outliers (near edges, not the object's colour): more than outlier_distance from the mean.
+  double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+  uint32_t kept = 0;
+  for (const Channels& p : pixels) {
+    bool inlier = true;
+    for (int ch = 0; ch < 3; ++ch) inlier = inlier && std::fabs(p[ch] - mean[ch]) <= outlier_distance;
+    if (!inlier) continue;
+    ++kept;
+    for (int ch = 0; ch < 3; ++ch) {
+      sum[ch] += p[ch];
+      sum2[ch] += static_cast<double>(p[ch]) * p[ch];
+    }
+  }
+  if (kept == 0) return false;
+  s->pixels = kept;
+  for (int ch = 0; ch < 3; ++ch) {
+    s->mean[ch] = sum[ch] / kept;
+    s->sigma[ch] = std::sqrt(std::max(0.0, sum2[ch] / kept - s->mean[ch] * s->mean[ch]));
+    // The sigma of a small object is not reliable: a fixed margin instead.
+    const double margin = kept > large_object_px ? 3 * s->sigma[ch] : small_object_margin;
+    s->lo[ch] = saturateToByte(static_cast<int>(std::floor(s->mean[ch] - margin)));
+    s->hi[ch] = saturateToByte(static_cast<int>(std::ceil(s->mean[ch] + margin)));
+  }
+  return true;
+}
+
+std::string validateLearningOptions(const LearningOptions& o) {
+  if (!std::isfinite(o.blend) || o.blend <= 0 || o.blend > 1) return "learning blend must be in (0, 1]";
+  for (double v : {o.match_gate, o.max_sigma, o.shrink_px, o.horizon_margin_px, o.stale_after_s}) {
+    if (!std::isfinite(v) || v < 0) return "learning gates, margins and times must be finite numbers >= 0";
+  }
+  if (o.persist_frames < 1) return "persist_frames must be >= 1";
+  return "";
+}
+
+ColorLearner::ColorLearner(std::vector<ColorClass> configured, const LearningOptions& options)
+    : configured_(std::move(configured)), classes_(configured_), options_(options) {
+  for (const ColorClass& c : configured_) {
+    ClassState s;
+    for (int ch = 0; ch < 3; ++ch) {
+      s.lo[ch] = c.min[ch];
+      s.hi[ch] = c.max[ch];
+    }
+    state_.push_back(s);
+  }
+}
+
+const ColorStats* ColorLearner::groundStats(ColorSpace space) const {
+  return have_ground_[static_cast<int>(space)] ? &ground_[static_cast<int>(space)] : nullptr;
+}
+
+const ColorStats* ColorLearner::skyStats(ColorSpace space) const {
+  return have_sky_[static_cast<int>(space)] ? &sky_[static_cast<int>(space)] : nullptr;
+}
+
+void ColorLearner::measureBackground(const cv::Mat& bgr, const HorizonEstimate& horizon,
+                                     const std::vector<cv::Rect>& objects, const bool* used) {
+  // A sparse grid of pixels away from every edge object: below the horizon (ground) and
+  // above it (sky); without a horizon, everything is ground.
+  std::vector<cv::Point> ground, sky;
+  constexpr int kStep = 4;
+  for (int y = kStep / 2; y < bgr.rows; y += kStep) {
+    for (int x = kStep / 2; x < bgr.cols; x += kStep) {
+      const cv::Point p(x, y);
+      if (std::any_of(objects.begin(), objects.end(), [&](const cv::Rect& r) { return r.contains(p); })) continue;
+      const double d = horizon.found ? signedDistance(horizon.line, x, y) : 1e9;
+      if (d > 8) {
+        ground.push_back(p);
+      } else if (d < -8) {
+        sky.push_back(p);
+      }
+    }
+  }
+  for (int s = 0; s < kNumColorSpaces; ++s) {
+    have_ground_[s] = have_sky_[s] = false;
+    if (!used[s]) continue;
+    const ColorSpace space = static_cast<ColorSpace>(s);
+    auto measure = [&](const std::vector<cv::Point>& points, ColorStats* out) {
+      if (points.size() < 50) return false;
+      // The samples as one row, converted at once.
+      cv::Mat row(1, static_cast<int>(points.size()), CV_8UC3);
+      for (size_t i = 0; i < points.size(); ++i) row.at<cv::Vec3b>(0, static_cast<int>(i)) = bgr.at<cv::Vec3b>(points[i]);
+      const cv::Mat converted = convertBgrImage(row, space);
+      std::vector<Channels> pixels(points.size());
+      for (size_t i = 0; i < points.size(); ++i) {
+        const cv::Vec3b v = converted.at<cv::Vec3b>(0, static_cast<int>(i));
+        pixels[i] = Channels{{v[0], v[1], v[2]}};
+      }
+      return colorStats(pixels, out, 40, 0, 0);
+    };
+    have_ground_[s] = measure(ground, &ground_[s]);
+    have_sky_[s] = measure(sky, &sky_[s]);
+  }
+}
+
+bool ColorLearner::publishable(int k, Channels* lo, Channels* hi) const {
+  for (int ch = 0; ch < 3; ++ch) {
+    (*lo)[ch] = saturateToByte(static_cast<int>(std::lround(state_[k].lo[ch])));
+    (*hi)[ch] = saturateToByte(static_cast<int>(std::lround(state_[k].hi[ch])));
+  }
+  return *lo != configured_[k].min || *hi != configured_[k].max;
+}
+
+bool ColorLearner::apply(int k, const ColorStats& measured, double stamp_s, std::string* rejected) {
+  const ColorSpace space = configured_[k].space;
+  ClassState next = state_[k];
+  for (int ch = 0; ch < 3; ++ch) {
+    next.lo[ch] += options_.blend * (measured.lo[ch] - next.lo[ch]);
+    next.hi[ch] += options_.blend * (measured.hi[ch] - next.hi[ch]);
+  }
+  // Never let a class grow over the ground or the sky as measured now.
+  ColorStats blended;
+  for (int ch = 0; ch < 3; ++ch) {
+    blended.lo[ch] = saturateToByte(static_cast<int>(std::floor(next.lo[ch])));
+    blended.hi[ch] = saturateToByte(static_cast<int>(std::ceil(next.hi[ch])));
+  }
+  if (const ColorStats* g = groundStats(space)) {
+    if (overlaps(blended, *g)) {
+      *rejected = "the range would overlap the ground's colour";
+      return false;
+    }
+  }
+  if (const ColorStats* s = skyStats(space)) {
+    if (overlaps(blended, *s)) {
+      *rejected = "the range would overlap the sky's colour";
+      return false;
+    }
+  }
+  next.last_measured_s = stamp_s;
+  state_[k] = next;
+  return true;
+}
+
+bool ColorLearner::driftBack(double stamp_s) {
+  bool moved = false;
+  for (size_t k = 0; k < configured_.size(); ++k) {
+    ClassState& s = state_[k];
+    if (s.last_measured_s < 0 || stamp_s - s.last_measured_s < options_.stale_after_s) continue;
+    for (int ch = 0; ch < 3; ++ch) {
+      s.lo[ch] += options_.blend * (configured_[k].min[ch] - s.lo[ch]);
+      s.hi[ch] += options_.blend * (configured_[k].max[ch] - s.hi[ch]);
+    }
+    moved = true;
+  }
+  return moved;
+}
+
+bool ColorLearner::update(const cv::Mat& bgr, const LandmarkResult& landmarks, const EdgeObjectFinder& objects,
+                          double stamp_s) {
+  measurements_.clear();
+  if (bgr.empty() || bgr.type() != CV_8UC3) return false;
+  const cv::Rect image(0, 0, bgr.cols, bgr.rows);
+
+  // Regions: the lines of each edge object.
+  std::map<int, std::vector<const DetectedLine*>> by_object;
+  for (const DetectedLine& l : landmarks.lines) by_object[l.object].push_back(&l);
+  std::vector<cv::Rect> object_boxes;
+  for (const EdgeObject& o : objects.objects()) {
+    object_boxes.push_back(cv::Rect(o.left - 3, o.top - 3, o.right - o.left + 7, o.bottom - o.top + 7) & image);
+  }
+  // Which spaces the classes use.
+  bool used[kNumColorSpaces] = {false, false, false};
+  for (const ColorClass& c : configured_) used[static_cast<int>(c.space)] = true;
+  used[static_cast<int>(ColorSpace::YUV)] = used[static_cast<int>(ColorSpace::YUV)] || options_.create_classes;
+  measureBackground(bgr, landmarks.horizon, object_boxes, used);
+
+  std::vector<std::vector<ColorStats>> matched(configured_.size());
+  std::vector<Channels> pixels;
+  for (const auto& entry : by_object) {
+    Measurement m;
+    m.region = regionFromLines(entry.second);
+    if (m.region.empty()) continue;
+    if (landmarks.horizon.found &&
+        std::any_of(m.region.begin(), m.region.end(), [&](const cv::Point2d& p) {
+          return signedDistance(landmarks.horizon.line, p.x, p.y) < options_.horizon_margin_px;
+        })) {
+      m.rejected = "at or above the horizon";
+      measurements_.push_back(m);
+      continue;
+    }
+    std::vector<cv::Point> polygon;
+    for (const cv::Point2d& p : m.region) polygon.emplace_back(cvRound(p.x), cvRound(p.y));
+    const cv::Rect roi = cv::boundingRect(polygon) & image;
+    if (roi.area() == 0) continue;
+    cv::Mat mask = cv::Mat::zeros(roi.size(), CV_8UC1);
+    for (cv::Point& p : polygon) p -= roi.tl();
+    cv::fillConvexPoly(mask, polygon, cv::Scalar(255));
+    if (options_.shrink_px > 0) {
+      const int k = 2 * static_cast<int>(std::ceil(options_.shrink_px)) + 1;
+      cv::erode(mask, mask, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)));
+    }
+    if (static_cast<uint32_t>(cv::countNonZero(mask)) < options_.min_region_px) {
+      m.rejected = "too small";
+      measurements_.push_back(m);
+      continue;
+    }
+    bool consistent = true;
+    for (int s = 0; s < kNumColorSpaces; ++s) {
+      if (!used[s]) continue;
+      pixelsIn(bgr, roi, mask, static_cast<ColorSpace>(s), &pixels);
+      colorStats(pixels, &m.stats[s]);
+      for (int ch = 0; ch < 3; ++ch) consistent = consistent && m.stats[s].sigma[ch] <= options_.max_sigma;
+    }
+    if (!consistent) {
+      m.rejected = "mixed colours (one channel spreads more than max_sigma)";
+      measurements_.push_back(m);
+      continue;
+    }
+    // The nearest class (centre of its current range) within the gate.
+    double best = options_.match_gate;
+    for (size_t k = 0; k < configured_.size(); ++k) {
+      if (wrapped(configured_[k])) continue;  // wrapped (hue) ranges are not learned
+      const ColorStats& st = m.stats[static_cast<int>(configured_[k].space)];
+      double d2 = 0;
+      for (int ch = 0; ch < 3; ++ch) {
+        const double centre = 0.5 * (state_[k].lo[ch] + state_[k].hi[ch]);
+        d2 += (st.mean[ch] - centre) * (st.mean[ch] - centre);
+      }
+      if (std::sqrt(d2) <= best) {
+        best = std::sqrt(d2);
+        m.matched_class = static_cast<int>(k);
+      }
+    }
+    if (m.matched_class >= 0) {
+      matched[m.matched_class].push_back(m.stats[static_cast<int>(configured_[m.matched_class].space)]);
+    } else {
+      m.rejected = "matches no class";
+    }
+    measurements_.push_back(m);
+  }
+
+  // One update per class: the union of this frame's measurements of it, blended in.
+  for (size_t k = 0; k < configured_.size(); ++k) {
+    if (matched[k].empty()) continue;
+    ColorStats all = matched[k][0];
+    for (const ColorStats& st : matched[k]) {
+      for (int ch = 0; ch < 3; ++ch) {
+        all.lo[ch] = std::min(all.lo[ch], st.lo[ch]);
+        all.hi[ch] = std::max(all.hi[ch], st.hi[ch]);
+      }
+    }
+    std::string rejected;
+    if (!apply(static_cast<int>(k), all, stamp_s, &rejected)) {
+      for (Measurement& m : measurements_) {
+        if (m.matched_class == static_cast<int>(k)) m.rejected = rejected;
+      }
+    }
+  }
+  driftBack(stamp_s);
+
+  // New classes from persistent unmatched regions (optional).
+  if (options_.create_classes) {
+    const int yuv = static_cast<int>(ColorSpace::YUV);
+    for (const Measurement& m : measurements_) {
+      if (m.rejected != "matches no class" || m.stats[yuv].pixels < options_.min_new_class_px) continue;
+      const ColorStats& st = m.stats[yuv];
+      const ColorStats* g = groundStats(ColorSpace::YUV);
+      const ColorStats* s = skyStats(ColorSpace::YUV);
+      if ((g && overlaps(st, *g)) || (s && overlaps(st, *s))) continue;
+      Candidate* same = nullptr;
+      for (Candidate& c : candidates_) {
+        double d2 = 0;
+        for (int ch = 0; ch < 3; ++ch) d2 += (c.mean[ch] - st.mean[ch]) * (c.mean[ch] - st.mean[ch]);
+        if (std::sqrt(d2) <= options_.match_gate) same = &c;
+      }
+      if (!same) {
+        candidates_.push_back(Candidate{{st.mean[0], st.mean[1], st.mean[2]}, st, 0, stamp_s});
+        same = &candidates_.back();
+      }
+      ++same->frames;
+      same->last_seen_s = stamp_s;
+      same->stats = st;
+      for (int ch = 0; ch < 3; ++ch) same->mean[ch] = st.mean[ch];
+    }
+    candidates_.erase(std::remove_if(candidates_.begin(), candidates_.end(),
+                                     [&](const Candidate& c) { return stamp_s - c.last_seen_s > 2.0; }),
+                      candidates_.end());
+    for (auto it = candidates_.begin(); it != candidates_.end();) {
+      if (it->frames < options_.persist_frames || configured_.size() >= static_cast<size_t>(kMaxColorClasses)) {
+        ++it;
+        continue;
+      }
+      ColorClass c;
+      c.name = "learned_" + std::to_string(++created_);
+      c.space = ColorSpace::YUV;
+      c.min = it->stats.lo;
+      c.max = it->stats.hi;
+      cv::Mat yuv_pixel(1, 1, CV_8UC3, cv::Scalar(it->mean[0], it->mean[1], it->mean[2])), rgb;
+      cv::cvtColor(yuv_pixel, rgb, cv::COLOR_YUV2RGB);
+      c.display_rgb = Channels{{rgb.at<cv::Vec3b>(0, 0)[0], rgb.at<cv::Vec3b>(0, 0)[1], rgb.at<cv::Vec3b>(0, 0)[2]}};
+      c.min_area_px = options_.min_new_class_px / 4;
+      c.source = "learned";
+      configured_.push_back(c);
+      ClassState s;
+      for (int ch = 0; ch < 3; ++ch) {
+        s.lo[ch] = c.min[ch];
+        s.hi[ch] = c.max[ch];
+      }
+      s.last_measured_s = stamp_s;
+      state_.push_back(s);
+      it = candidates_.erase(it);
+    }
+  }
+
+  // The set to publish; changed when any range moved by a whole step.
+  std::vector<ColorClass> next = configured_;
+  for (size_t k = 0; k < configured_.size(); ++k) {
+    Channels lo, hi;
+    if (publishable(static_cast<int>(k), &lo, &hi)) {
+      next[k].min = lo;
+      next[k].max = hi;
+      next[k].source = "learned";
+    }
+  }
+  bool changed = next.size() != classes_.size();
+  for (size_t k = 0; k < next.size() && !changed; ++k) {
+    changed = next[k].min != classes_[k].min || next[k].max != classes_[k].max || next[k].source != classes_[k].source;
+  }
+  classes_ = std::move(next);
+  return changed;
+}
+
+}  // namespace rle_vision
