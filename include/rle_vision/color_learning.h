@@ -31,8 +31,15 @@ struct ColorStats {
 bool colorStats(const std::vector<Channels>& pixels, ColorStats* stats, double outlier_distance = 40,
                 uint32_t large_object_px = 100, double small_object_margin = 15);
 
+// The colour modes of a set of pixels (one space): from the densest colour, a mean shift
+// within `radius` on every channel, its members taken out, and again, at most `max_modes`
+// times. Modes smaller than `min_size` are dropped. Returns members as indices into `pixels`.
+std::vector<std::vector<int>> colorModes(const std::vector<Channels>& pixels, double radius, size_t min_size,
+                                         int max_modes = 4);
+
 struct LearningOptions {
-  double blend = 0.3;               // weight of a new measurement in a class's range (0..1]
+  double blend = 0.2;               // weight of a new measurement in a class's range (0..1]
+  double mode_radius = 20;          // a colour mode holds the pixels this close (every channel) to its mean
   double match_gate = 45;           // largest distance between a class's centre and a measurement's mean
   double max_sigma = 25;            // a measurement spreading more than this on a channel is mixed colours
   uint32_t min_region_px = 60;      // smaller regions are not measured
@@ -62,8 +69,10 @@ class ColorLearner {
   const std::vector<ColorClass>& classes() const { return classes_; }
 
   // What the last update saw, for tests and debug views.
+  // One colour mode of one region.
   struct Measurement {
     std::vector<cv::Point2d> region;
+    cv::Rect pixels_box;                // where the mode's pixels lie
     ColorStats stats[kNumColorSpaces];  // per space used by the classes
     int matched_class = -1;             // -1: none
     std::string rejected;               // why it changed nothing ("" when it was applied)

@@ -39,28 +39,6 @@ bool overlaps(const ColorStats& a, const ColorStats& b) {
 
 bool wrapped(const ColorClass& c) { return c.min[0] > c.max[0] || c.min[1] > c.max[1] || c.min[2] > c.max[2]; }
 
-// The pixels of `mask` in `roi` of the BGR image, in `space`.
-void pixelsIn(const cv::Mat& bgr, const cv::Rect& roi, const cv::Mat& mask, ColorSpace space,
-              std::vector<Channels>* out) {
-  out->clear();
-  const cv::Mat converted = space == ColorSpace::HSV ? convertBgrImage(bgr(roi).clone(), ColorSpace::HSV) : cv::Mat();
-  for (int y = 0; y < roi.height; ++y) {
-    const uint8_t* m = mask.ptr<uint8_t>(y);
-    const cv::Vec3b* p = bgr.ptr<cv::Vec3b>(roi.y + y) + roi.x;
-    for (int x = 0; x < roi.width; ++x) {
-      if (!m[x]) continue;
-      if (space == ColorSpace::HSV) {
-        const cv::Vec3b h = converted.at<cv::Vec3b>(y, x);
-        out->push_back(Channels{{h[0], h[1], h[2]}});
-      } else if (space == ColorSpace::RGB) {
-        out->push_back(Channels{{p[x][2], p[x][1], p[x][0]}});
-      } else {
-        out->push_back(yuvFromRgb(p[x][2], p[x][1], p[x][0]));
-      }
-    }
-  }
-}
-
 }  // namespace
 
 std::vector<cv::Point2d> regionFromLines(const std::vector<const DetectedLine*>& lines) {
@@ -117,8 +95,49 @@ bool colorStats(const std::vector<Channels>& pixels, ColorStats* s, double outli
   return true;
 }
 
+std::vector<std::vector<int>> colorModes(const std::vector<Channels>& pixels, double radius, size_t min_size,
+                                         int max_modes) {
+  std::vector<std::vector<int>> modes;
+  std::vector<int> alive(pixels.size());
+  for (size_t i = 0; i < pixels.size(); ++i) alive[i] = static_cast<int>(i);
+  auto within = [&](const Channels& p, const double* mean) {
+    return std::fabs(p[0] - mean[0]) <= radius && std::fabs(p[1] - mean[1]) <= radius && std::fabs(p[2] - mean[2]) <= radius;
+  };
+  std::vector<int> histogram(16 * 16 * 16);
+  for (int m = 0; m < max_modes && alive.size() >= min_size; ++m) {
+    // The seed: the centre of the densest 16-level colour bin.
+    std::fill(histogram.begin(), histogram.end(), 0);
+    for (int i : alive) ++histogram[(pixels[i][0] >> 4) * 256 + (pixels[i][1] >> 4) * 16 + (pixels[i][2] >> 4)];
+    const int bin = static_cast<int>(std::max_element(histogram.begin(), histogram.end()) - histogram.begin());
+    double mean[3] = {(bin / 256) * 16 + 8.0, ((bin / 16) % 16) * 16 + 8.0, (bin % 16) * 16 + 8.0};
+    std::vector<int> members;
+    for (int iteration = 0; iteration < 5; ++iteration) {
+      members.clear();
+      double sum[3] = {0, 0, 0};
+      for (int i : alive) {
+        if (!within(pixels[i], mean)) continue;
+        members.push_back(i);
+        for (int ch = 0; ch < 3; ++ch) sum[ch] += pixels[i][ch];
+      }
+      if (members.empty()) break;
+      for (int ch = 0; ch < 3; ++ch) mean[ch] = sum[ch] / members.size();
+    }
+    if (members.empty()) break;
+    std::vector<int> rest;
+    std::vector<char> taken(pixels.size(), 0);
+    for (int i : members) taken[i] = 1;
+    for (int i : alive) {
+      if (!taken[i]) rest.push_back(i);
+    }
+    alive.swap(rest);
+    if (members.size() >= min_size) modes.push_back(std::move(members));
+  }
+  return modes;
+}
+
 std::string validateLearningOptions(const LearningOptions& o) {
   if (!std::isfinite(o.blend) || o.blend <= 0 || o.blend > 1) return "learning blend must be in (0, 1]";
+  if (!std::isfinite(o.mode_radius) || o.mode_radius <= 0) return "mode_radius must be a finite number > 0";
   for (double v : {o.match_gate, o.max_sigma, o.shrink_px, o.horizon_margin_px, o.stale_after_s}) {
     if (!std::isfinite(v) || v < 0) return "learning gates, margins and times must be finite numbers >= 0";
   }
@@ -219,6 +238,19 @@ bool ColorLearner::apply(int k, const ColorStats& measured, double stamp_s, std:
       return false;
     }
   }
+  // Nor over another class of the same space: two classes would claim the same pixels.
+  for (size_t j = 0; j < configured_.size(); ++j) {
+    if (static_cast<int>(j) == k || configured_[j].space != space || wrapped(configured_[j])) continue;
+    ColorStats other;
+    for (int ch = 0; ch < 3; ++ch) {
+      other.lo[ch] = saturateToByte(static_cast<int>(std::floor(state_[j].lo[ch])));
+      other.hi[ch] = saturateToByte(static_cast<int>(std::ceil(state_[j].hi[ch])));
+    }
+    if (overlaps(blended, other)) {
+      *rejected = "the range would overlap class '" + configured_[j].name + "'";
+      return false;
+    }
+  }
   next.last_measured_s = stamp_s;
   state_[k] = next;
   return true;
@@ -263,17 +295,13 @@ bool ColorLearner::update(const cv::Mat& bgr, const LandmarkResult& landmarks, c
     Measurement m;
     m.region = regionFromLines(entry.second);
     if (m.region.empty()) continue;
-    if (landmarks.horizon.found &&
-        std::any_of(m.region.begin(), m.region.end(), [&](const cv::Point2d& p) {
-          return signedDistance(landmarks.horizon.line, p.x, p.y) < options_.horizon_margin_px;
-        })) {
-      m.rejected = "at or above the horizon";
-      measurements_.push_back(m);
-      continue;
-    }
     std::vector<cv::Point> polygon;
     for (const cv::Point2d& p : m.region) polygon.emplace_back(cvRound(p.x), cvRound(p.y));
-    const cv::Rect roi = cv::boundingRect(polygon) & image;
+    // Padded so the erosion also bites at the region's bounding box (outside a Mat, erode
+    // sees set pixels).
+    const int pad = static_cast<int>(std::ceil(options_.shrink_px)) + 1;
+    const cv::Rect bounds = cv::boundingRect(polygon);
+    const cv::Rect roi = cv::Rect(bounds.x - pad, bounds.y - pad, bounds.width + 2 * pad, bounds.height + 2 * pad) & image;
     if (roi.area() == 0) continue;
     cv::Mat mask = cv::Mat::zeros(roi.size(), CV_8UC1);
     for (cv::Point& p : polygon) p -= roi.tl();
@@ -287,39 +315,87 @@ bool ColorLearner::update(const cv::Mat& bgr, const LandmarkResult& landmarks, c
       measurements_.push_back(m);
       continue;
     }
-    bool consistent = true;
-    for (int s = 0; s < kNumColorSpaces; ++s) {
-      if (!used[s]) continue;
-      pixelsIn(bgr, roi, mask, static_cast<ColorSpace>(s), &pixels);
-      colorStats(pixels, &m.stats[s]);
-      for (int ch = 0; ch < 3; ++ch) consistent = consistent && m.stats[s].sigma[ch] <= options_.max_sigma;
-    }
-    if (!consistent) {
-      m.rejected = "mixed colours (one channel spreads more than max_sigma)";
-      measurements_.push_back(m);
-      continue;
-    }
-    // The nearest class (centre of its current range) within the gate.
-    double best = options_.match_gate;
-    for (size_t k = 0; k < configured_.size(); ++k) {
-      if (wrapped(configured_[k])) continue;  // wrapped (hue) ranges are not learned
-      const ColorStats& st = m.stats[static_cast<int>(configured_[k].space)];
-      double d2 = 0;
-      for (int ch = 0; ch < 3; ++ch) {
-        const double centre = 0.5 * (state_[k].lo[ch] + state_[k].hi[ch]);
-        d2 += (st.mean[ch] - centre) * (st.mean[ch] - centre);
-      }
-      if (std::sqrt(d2) <= best) {
-        best = std::sqrt(d2);
-        m.matched_class = static_cast<int>(k);
+    // The region may hold several objects (boxes touching in the image make one edge object):
+    // each colour mode in it is measured on its own.
+    std::vector<cv::Point> positions;
+    std::vector<Channels> yuv;
+    for (int y = 0; y < roi.height; ++y) {
+      const uint8_t* row = mask.ptr<uint8_t>(y);
+      const cv::Vec3b* p = bgr.ptr<cv::Vec3b>(roi.y + y) + roi.x;
+      for (int x = 0; x < roi.width; ++x) {
+        if (!row[x]) continue;
+        positions.emplace_back(roi.x + x, roi.y + y);
+        yuv.push_back(yuvFromRgb(p[x][2], p[x][1], p[x][0]));
       }
     }
-    if (m.matched_class >= 0) {
-      matched[m.matched_class].push_back(m.stats[static_cast<int>(configured_[m.matched_class].space)]);
-    } else {
-      m.rejected = "matches no class";
+    for (const std::vector<int>& mode : colorModes(yuv, options_.mode_radius, options_.min_region_px)) {
+      Measurement mm = m;
+      std::vector<cv::Point> where;
+      for (int i : mode) where.push_back(positions[i]);
+      mm.pixels_box = cv::boundingRect(where);
+      if (landmarks.horizon.found && std::any_of(where.begin(), where.end(), [&](const cv::Point& p) {
+            return signedDistance(landmarks.horizon.line, p.x, p.y) < options_.horizon_margin_px;
+          })) {
+        mm.rejected = "at or above the horizon";
+        measurements_.push_back(mm);
+        continue;
+      }
+      bool consistent = true;
+      for (int s = 0; s < kNumColorSpaces; ++s) {
+        if (!used[s]) continue;
+        if (s == static_cast<int>(ColorSpace::YUV)) {
+          pixels.clear();
+          for (int i : mode) pixels.push_back(yuv[i]);
+        } else {
+          cv::Mat row(1, static_cast<int>(where.size()), CV_8UC3);
+          for (size_t i = 0; i < where.size(); ++i) row.at<cv::Vec3b>(0, static_cast<int>(i)) = bgr.at<cv::Vec3b>(where[i]);
+          const cv::Mat converted = convertBgrImage(row, static_cast<ColorSpace>(s));
+          pixels.clear();
+          for (size_t i = 0; i < where.size(); ++i) {
+            const cv::Vec3b v = converted.at<cv::Vec3b>(0, static_cast<int>(i));
+            pixels.push_back(Channels{{v[0], v[1], v[2]}});
+          }
+        }
+        colorStats(pixels, &mm.stats[s]);
+        for (int ch = 0; ch < 3; ++ch) consistent = consistent && mm.stats[s].sigma[ch] <= options_.max_sigma;
+      }
+      if (!consistent) {
+        mm.rejected = "mixed colours (one channel spreads more than max_sigma)";
+        measurements_.push_back(mm);
+        continue;
+      }
+      // The nearest class (centre of its current range) within the gate.
+      double best = options_.match_gate;
+      for (size_t k = 0; k < configured_.size(); ++k) {
+        if (wrapped(configured_[k])) continue;  // wrapped (hue) ranges are not learned
+        const ColorStats& st = mm.stats[static_cast<int>(configured_[k].space)];
+        double d2 = 0;
+        for (int ch = 0; ch < 3; ++ch) {
+          const double centre = 0.5 * (state_[k].lo[ch] + state_[k].hi[ch]);
+          d2 += (st.mean[ch] - centre) * (st.mean[ch] - centre);
+        }
+        if (std::sqrt(d2) <= best) {
+          best = std::sqrt(d2);
+          mm.matched_class = static_cast<int>(k);
+        }
+      }
+      if (mm.matched_class >= 0) {
+        // A mode of the ground's or the sky's colour is background between boxes, not an object.
+        const ColorSpace space = configured_[mm.matched_class].space;
+        const ColorStats& st = mm.stats[static_cast<int>(space)];
+        const ColorStats* g = groundStats(space);
+        const ColorStats* sk = skyStats(space);
+        if ((g && overlaps(st, *g)) || (sk && overlaps(st, *sk))) {
+          mm.rejected = "the ground's or the sky's colour";
+          mm.matched_class = -1;
+        } else {
+          matched[mm.matched_class].push_back(st);
+        }
+      } else {
+        mm.rejected = "matches no class";
+      }
+      measurements_.push_back(mm);
     }
-    measurements_.push_back(m);
   }
 
   // One update per class: the union of this frame's measurements of it, blended in.

@@ -1,0 +1,295 @@
+// Colour ranges from landmarks: the paper's statistics, regions from lines, the update gates,
+// and the closed loop on the drifting-light scene.
+#include <cstdio>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "rle_vision/color_convert.h"
+#include "rle_vision/color_learning.h"
+#include "rle_vision/config_files.h"
+#include "rle_vision/segmenter.h"
+#include "test_helpers.h"
+
+namespace rle_vision {
+namespace {
+
+std::vector<Channels> gaussianPixels(int n, double mean, double sigma, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> d(mean, sigma);
+  std::vector<Channels> out;
+  for (int i = 0; i < n; ++i) {
+    out.push_back(Channels{{saturateToByte(static_cast<int>(std::lround(d(rng)))), saturateToByte(static_cast<int>(std::lround(d(rng)))),
+                            saturateToByte(static_cast<int>(std::lround(d(rng))))}});
+  }
+  return out;
+}
+
+TEST(ColorStats, LargeObjectsGetMeanPlusMinusThreeSigma) {
+  ColorStats s;
+  ASSERT_TRUE(colorStats(gaussianPixels(5000, 100, 5, 1), &s));
+  for (int ch = 0; ch < 3; ++ch) {
+    EXPECT_NEAR(s.mean[ch], 100, 0.3);
+    EXPECT_NEAR(s.sigma[ch], 5, 0.2);
+    EXPECT_NEAR(s.lo[ch], 85, 1.0);
+    EXPECT_NEAR(s.hi[ch], 115, 1.0);
+  }
+  EXPECT_EQ(s.pixels, 5000u);
+}
+
+TEST(ColorStats, SmallObjectsGetMeanPlusMinusFifteen) {
+  ColorStats s;
+  ASSERT_TRUE(colorStats(gaussianPixels(80, 150, 2, 2), &s));  // 80 <= 100 pixels
+  for (int ch = 0; ch < 3; ++ch) {
+    EXPECT_NEAR(s.lo[ch], s.mean[ch] - 15, 1.0);
+    EXPECT_NEAR(s.hi[ch], s.mean[ch] + 15, 1.0);
+  }
+}
+
+TEST(ColorStats, OutliersMoreThanFortyFromTheMeanAreDropped) {
+  std::vector<Channels> pixels = gaussianPixels(900, 100, 3, 3);
+  for (int i = 0; i < 100; ++i) pixels.push_back(Channels{{250, 250, 250}});  // 10% edge pixels
+  ColorStats s;
+  ASSERT_TRUE(colorStats(pixels, &s));
+  EXPECT_EQ(s.pixels, 900u);
+  for (int ch = 0; ch < 3; ++ch) {
+    EXPECT_NEAR(s.mean[ch], 100, 0.5);
+    EXPECT_LT(s.hi[ch], 115);
+  }
+  EXPECT_FALSE(colorStats({}, &s));
+}
+
+DetectedLine segment(double x1, double y1, double x2, double y2, int object = 0) {
+  DetectedLine l;
+  l.line = lineThroughPoints(x1, y1, x2, y2);
+  l.x1 = x1;
+  l.y1 = y1;
+  l.x2 = x2;
+  l.y2 = y2;
+  l.length = std::hypot(x2 - x1, y2 - y1);
+  l.object = object;
+  return l;
+}
+
+TEST(RegionFromLines, ClosedSquare) {
+  const DetectedLine a = segment(10, 10, 50, 10), b = segment(50, 10, 50, 50), c = segment(50, 50, 10, 50),
+                     d = segment(10, 50, 10, 10);
+  const std::vector<cv::Point2d> region = regionFromLines({&a, &b, &c, &d});
+  ASSERT_EQ(region.size(), 4u);
+  std::vector<cv::Point2f> f(region.begin(), region.end());
+  EXPECT_NEAR(cv::contourArea(f), 1600, 1e-6);
+}
+
+TEST(RegionFromLines, CornersWhereLinesFallShortCloseTheRegion) {
+  // Three sides of a box whose segments stop 6 px short of the corners: their meeting points
+  // complete the outline.
+  const DetectedLine top = segment(16, 10, 44, 10), right = segment(50, 16, 50, 44), left = segment(10, 16, 10, 44);
+  const std::vector<cv::Point2d> region = regionFromLines({&top, &right, &left});
+  std::vector<cv::Point2f> f(region.begin(), region.end());
+  // Hull of the segments plus the two top corners (10,10) and (50,10).
+  EXPECT_NEAR(cv::contourArea(f), 40.0 * 34.0, 1e-6);  // (10,10)-(50,10)-(50,44)-(10,44)
+  bool has_corner = false;
+  for (const cv::Point2d& p : region) has_corner = has_corner || (std::fabs(p.x - 10) < 1e-6 && std::fabs(p.y - 10) < 1e-6);
+  EXPECT_TRUE(has_corner);
+  EXPECT_TRUE(regionFromLines({&top}).empty());
+}
+
+TEST(ColorModes, SeparatesTwoObjectsInOneRegion) {
+  std::vector<Channels> pixels = gaussianPixels(600, 80, 3, 4);
+  const std::vector<Channels> other = gaussianPixels(300, 160, 3, 5);
+  pixels.insert(pixels.end(), other.begin(), other.end());
+  const auto modes = colorModes(pixels, 20, 50);
+  ASSERT_EQ(modes.size(), 2u);
+  EXPECT_EQ(modes[0].size(), 600u);  // the densest first
+  EXPECT_EQ(modes[1].size(), 300u);
+}
+
+// A frame with sky above row 100, ground below, and one box (whose lines are given) filled
+// with `box_bgr`.
+struct SyntheticFrame {
+  cv::Mat image;
+  LandmarkResult landmarks;
+  EdgeObjectFinder objects;
+};
+
+SyntheticFrame boxFrame(const cv::Scalar& box_bgr) {
+  SyntheticFrame f;
+  f.image = cv::Mat(240, 320, CV_8UC3, cv::Scalar(50, 140, 40));
+  f.image(cv::Rect(0, 0, 320, 100)).setTo(cv::Scalar(235, 205, 170));
+  f.image(cv::Rect(100, 140, 60, 50)).setTo(box_bgr);
+  f.landmarks.lines = {segment(100, 140, 160, 140), segment(160, 140, 160, 190), segment(160, 190, 100, 190),
+                       segment(100, 190, 100, 140)};
+  f.landmarks.horizon.found = true;
+  f.landmarks.horizon.line = lineThroughPoints(0, 99.5, 319, 99.5);
+  return f;
+}
+
+std::vector<ColorClass> obstacleClasses() {
+  return {test::makeClass("red", ColorSpace::YUV, {{30, 85, 184}}, {{150, 128, 255}}),
+          test::makeClass("blue", ColorSpace::YUV, {{15, 163, 60}}, {{120, 235, 128}})};
+}
+
+TEST(ColorLearner, FollowsAnObjectsColour) {
+  ColorLearner learner(obstacleClasses(), LearningOptions());
+  const SyntheticFrame f = boxFrame(cv::Scalar(30, 30, 150));  // a darker red than configured
+  ASSERT_TRUE(learner.update(f.image, f.landmarks, f.objects, 0.0));
+  const ColorClass& red = learner.classes()[0];
+  EXPECT_EQ(red.source, "learned");
+  const Channels yuv = yuvFromRgb(150, 30, 30);
+  // A fifth of the way (blend 0.2) from the configured range towards the measured one: the
+  // eroded region is over 100 px of one colour, so mean +- 3 sigma = the colour itself.
+  EXPECT_NEAR(red.min[0], 30 + 0.2 * (yuv[0] - 30), 1.0);
+  EXPECT_NEAR(red.max[0], 150 + 0.2 * (yuv[0] - 150), 1.0);
+  EXPECT_EQ(learner.classes()[1].source, "config");  // blue untouched
+  ASSERT_EQ(learner.lastMeasurements().size(), 1u);  // the eroded region holds only the box
+  EXPECT_EQ(learner.lastMeasurements()[0].matched_class, 0);
+}
+
+TEST(ColorLearner, AGroundColouredObjectNeverWidensAClass) {
+  // A "class" whose centre sits near the ground's colour would match a ground-coloured region:
+  // the region is the ground, and the update is refused.
+  const Channels ground = yuvFromRgb(40, 140, 50);
+  std::vector<ColorClass> classes = obstacleClasses();
+  classes.push_back(test::makeClass("greenish", ColorSpace::YUV,
+                                    {{static_cast<uint8_t>(ground[0] - 30), static_cast<uint8_t>(ground[1] + 12), static_cast<uint8_t>(ground[2] + 12)}},
+                                    {{static_cast<uint8_t>(ground[0] + 30), static_cast<uint8_t>(ground[1] + 30), static_cast<uint8_t>(ground[2] + 30)}}));
+  ColorLearner learner(classes, LearningOptions());
+  SyntheticFrame f = boxFrame(cv::Scalar(50, 140, 40));  // the box is exactly ground-coloured
+  for (int i = 0; i < 20; ++i) learner.update(f.image, f.landmarks, f.objects, i / 30.0);
+  for (size_t k = 0; k < classes.size(); ++k) {
+    EXPECT_EQ(learner.classes()[k].min, classes[k].min) << classes[k].name;
+    EXPECT_EQ(learner.classes()[k].max, classes[k].max) << classes[k].name;
+  }
+  bool refused = false;
+  for (const auto& m : learner.lastMeasurements()) refused = refused || m.rejected.find("ground") != std::string::npos;
+  EXPECT_TRUE(refused);
+}
+
+TEST(ColorLearner, RegionsAtTheHorizonAreNotObstacles) {
+  ColorLearner learner(obstacleClasses(), LearningOptions());
+  SyntheticFrame f = boxFrame(cv::Scalar(30, 30, 150));
+  f.landmarks.horizon.line = lineThroughPoints(0, 150, 319, 150);  // through the box
+  EXPECT_FALSE(learner.update(f.image, f.landmarks, f.objects, 0.0));
+  EXPECT_EQ(learner.classes()[0].source, "config");
+}
+
+TEST(ColorLearner, NoClassGrowsIntoAnother) {
+  // Two classes split on V only: "near" holds the box's colour, "far" starts just above. The
+  // noisy box's measured range reaches into "far"; the update that would overlap is refused.
+  const Channels c = yuvFromRgb(210, 40, 40);
+  const uint8_t y_lo = static_cast<uint8_t>(c[0] - 40), y_hi = static_cast<uint8_t>(c[0] + 40);
+  const uint8_t u_lo = static_cast<uint8_t>(c[1] - 30), u_hi = static_cast<uint8_t>(c[1] + 30);
+  const std::vector<ColorClass> classes = {
+      test::makeClass("near", ColorSpace::YUV, {{y_lo, u_lo, static_cast<uint8_t>(c[2] - 25)}}, {{y_hi, u_hi, static_cast<uint8_t>(c[2] + 2)}}),
+      test::makeClass("far", ColorSpace::YUV, {{y_lo, u_lo, static_cast<uint8_t>(c[2] + 12)}}, {{y_hi, u_hi, 255}})};
+  ColorLearner learner(classes, LearningOptions());
+  SyntheticFrame f = boxFrame(cv::Scalar(40, 40, 210));
+  cv::Mat noise(50, 60, CV_16SC3), box;
+  cv::RNG(7).fill(noise, cv::RNG::NORMAL, 0, 8);
+  f.image(cv::Rect(100, 140, 60, 50)).convertTo(box, CV_16SC3);
+  box += noise;
+  box.convertTo(f.image(cv::Rect(100, 140, 60, 50)), CV_8UC3);
+  bool refused = false;
+  for (int i = 0; i < 30; ++i) {
+    learner.update(f.image, f.landmarks, f.objects, i / 30.0);
+    const ColorClass &near = learner.classes()[0], &far = learner.classes()[1];
+    ASSERT_LT(near.max[2], far.min[2]) << "frame " << i;
+    for (const auto& m : learner.lastMeasurements()) refused = refused || m.rejected.find("overlap class 'far'") != std::string::npos;
+  }
+  EXPECT_TRUE(refused) << "the test should have driven 'near' against 'far'";
+}
+
+TEST(ColorLearner, UnmeasuredClassesDriftBackToTheirConfiguredRange) {
+  LearningOptions options;
+  options.stale_after_s = 1.0;
+  ColorLearner learner(obstacleClasses(), options);
+  const SyntheticFrame seen = boxFrame(cv::Scalar(30, 30, 150));
+  for (int i = 0; i < 10; ++i) learner.update(seen.image, seen.landmarks, seen.objects, i / 30.0);
+  EXPECT_EQ(learner.classes()[0].source, "learned");
+  SyntheticFrame empty = boxFrame(cv::Scalar(50, 140, 40));
+  empty.landmarks.lines.clear();
+  for (int i = 0; i < 120; ++i) learner.update(empty.image, empty.landmarks, empty.objects, 1.0 + i / 30.0);
+  EXPECT_EQ(learner.classes()[0].min, obstacleClasses()[0].min);
+  EXPECT_EQ(learner.classes()[0].max, obstacleClasses()[0].max);
+  EXPECT_EQ(learner.classes()[0].source, "config");
+}
+
+TEST(ColorLearner, PersistentUnknownColoursBecomeLearnedClassesWhenAsked) {
+  LearningOptions options;
+  options.create_classes = true;
+  options.persist_frames = 5;
+  const SyntheticFrame f = boxFrame(cv::Scalar(200, 200, 20));  // cyan: no class
+  ColorLearner off(obstacleClasses(), LearningOptions());
+  ColorLearner on(obstacleClasses(), options);
+  for (int i = 0; i < 6; ++i) {
+    off.update(f.image, f.landmarks, f.objects, i / 30.0);
+    on.update(f.image, f.landmarks, f.objects, i / 30.0);
+  }
+  EXPECT_EQ(off.classes().size(), 2u);
+  ASSERT_EQ(on.classes().size(), 3u);
+  EXPECT_EQ(on.classes()[2].name, "learned_1");
+  EXPECT_EQ(on.classes()[2].source, "learned");
+  EXPECT_TRUE(on.classes()[2].contains(yuvFromRgb(20, 200, 200)));
+}
+
+// The closed loop on the drifting-light preset: tracker recall of obstacles (a blob of the
+// box's class with bounding-box IoU >= 0.5) over time, with and without learning.
+TEST(ColorLearner, ClosedLoopKeepsTheTrackerWorkingAsTheLightDrifts) {
+  const SceneSimulator simulator(loadSceneConfig(test::sourcePath("config/scene_drift.yaml")));
+  const std::vector<ColorClass> configured = loadColorClasses(test::sourcePath("config/colors.yaml"));
+  for (const bool learning : {false, true}) {
+    ColorLearner learner(configured, LearningOptions());
+    LandmarkDetector detector;
+    LandmarkResult landmarks;
+    Segmenter segmenter;
+    std::vector<Region> regions;
+    double worst = 1.0, last = 0.0;
+    int false_blobs = 0;
+    for (int window = 0; window < 16; ++window) {  // 2-s windows over 32 s
+      int truths = 0, found = 0;
+      for (int frame = window * 60; frame < (window + 1) * 60; frame += 3) {
+        const double t = frame / 30.0;
+        const SimFrame f = simulator.render(frame, t);
+        if (learning) {
+          detector.detectInImage(f.image, LandmarkOptions(), &landmarks);
+          learner.update(f.image, landmarks, detector.edgeObjects(), t);
+        }
+        const ColorTable table(learning ? learner.classes() : configured);
+        segmenter.segment(f.image, PixelFormat::BGR8, table, &regions);
+        for (const BoxTruth& box : f.boxes) {
+          if (box.area < 200 || box.pieces != 1 || box.touches_same_class) continue;
+          ++truths;
+          const cv::Rect truth(box.left, box.top, box.right - box.left + 1, box.bottom - box.top + 1);
+          found += std::any_of(regions.begin(), regions.end(), [&](const Region& r) {
+            const cv::Rect blob(r.left, r.top, r.right - r.left + 1, r.bottom - r.top + 1);
+            const double inter = (blob & truth).area();
+            return table.classes()[r.label - 1].name == box.color_class && inter / (blob.area() + truth.area() - inter) >= 0.5;
+          });
+        }
+        // No blob may lie on ground or sky: every blob overlaps some box.
+        for (const Region& r : regions) {
+          const cv::Rect blob(r.left, r.top, r.right - r.left + 1, r.bottom - r.top + 1);
+          const bool on_box = std::any_of(f.boxes.begin(), f.boxes.end(), [&](const BoxTruth& b) {
+            return b.area > 0 && (blob & cv::Rect(b.left, b.top, b.right - b.left + 1, b.bottom - b.top + 1)).area() > 0;
+          });
+          false_blobs += !on_box;
+        }
+      }
+      const double recall = static_cast<double>(found) / truths;
+      worst = std::min(worst, recall);
+      last = recall;
+    }
+    std::printf("[ closed loop ] learning %s: worst 2-s recall %.2f, last %.2f, false blobs %d\n",
+                learning ? "on " : "off", worst, last, false_blobs);
+    if (learning) {
+      EXPECT_GE(worst, 0.9);
+      EXPECT_EQ(false_blobs, 0);
+    } else {
+      EXPECT_LT(last, 0.5);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rle_vision
