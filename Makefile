@@ -1,6 +1,7 @@
 # rle_vision: `make demo` and `make test` do all set-up on a fresh Debian bookworm machine.
 SHELL := /bin/bash
 DURATION ?= 0
+ARGS ?=
 JOBS ?= 2
 export JOBS
 
@@ -15,7 +16,7 @@ build: deps
 	@scripts/build.sh
 
 demo: build
-	@scripts/demo.sh "$(DURATION)"
+	@scripts/demo.sh "$(DURATION)" $(ARGS)
 
 test: build
 	@scripts/run_tests.sh

@@ -8,7 +8,12 @@ results="$WS/build/test_results"
 rm -rf "$results"
 extra=()
 cd "$WS"
-if ! catkin_make run_tests -j"${JOBS:-2}"; then
+# The test binaries are built first with all jobs; the tests then run one at a time, since the
+# rostests run 30-Hz pipelines that must not compete for the 2 cores with each other.
+if ! catkin_make tests -j"${JOBS:-2}"; then
+  extra+=("building the tests failed (see above)")
+fi
+if ! catkin_make run_tests -j1; then
   extra+=("catkin_make run_tests exited with an error (see above)")
 fi
 exec python3 "$ROOT/scripts/summarize_tests.py" "$results" "${extra[@]}"

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rle_vision/color_class.h"
+#include "rle_vision/color_learning.h"
 #include "rle_vision/landmark_detector.h"
 #include "rle_vision/scene_simulator.h"
 
@@ -31,6 +32,10 @@ std::string colorClassesToYaml(const std::vector<ColorClass>& classes);
 // result is validated. Throws ConfigError.
 LandmarkOptions loadLandmarkParams(const std::string& path);
 LandmarkOptions parseLandmarkParams(const std::string& text, const std::string& origin);
+
+// Colour learning's parameters (the learning_* keys) from the same file. Throws ConfigError.
+LearningOptions loadLearningParams(const std::string& path);
+LearningOptions parseLearningParams(const std::string& text, const std::string& origin);
 
 // A scene file (see config/scene_default.yaml). Throws ConfigError.
 SceneConfig loadSceneConfig(const std::string& path);

@@ -7,6 +7,7 @@
 #include <opencv2/core.hpp>
 
 #include "rle_vision/blob_tracker.h"
+#include "rle_vision/color_learning.h"
 #include "rle_vision/color_table.h"
 #include "rle_vision/horizon.h"
 #include "rle_vision/pixel_format.h"
@@ -23,6 +24,9 @@ void drawBlobs(cv::Mat* canvas, const std::vector<TrackedBlob>& blobs, const Col
 // One swatch per colour class along the bottom edge: left half its display colour, right half
 // the colour at the centre of its range; learned classes are marked with '*'.
 void drawColorSwatches(cv::Mat* canvas, const ColorTable& table);
+
+// The regions colour learning measured: accepted in white, refused in red with the reason.
+void drawLearning(cv::Mat* canvas, const std::vector<ColorLearner::Measurement>& measurements);
 
 // Lines in green, the horizon in thick cyan with its roll and pitch (rad; pitch may be NaN).
 void drawLandmarks(cv::Mat* canvas, const std::vector<DetectedLine>& lines, const HorizonEstimate& horizon,

@@ -5,30 +5,51 @@
 #include "yaml_reader.h"
 
 namespace rle_vision {
+namespace {
+
+// Every key of a landmark parameters file: the landmark step's, colour learning's, and the
+// ROS-only ones (low_priority, learning, learning_publish_period_s).
+const std::initializer_list<const char*> kLandmarkFileKeys = {
+    "edge_gain", "gray_threshold", "sharp_threshold", "min_object_px", "thin_edges", "min_votes",
+    "min_line_length_px", "sampling_margin", "max_samples_per_object", "max_rounds", "max_failed_peaks",
+    "min_pair_distance_px", "theta_bin_deg", "intercept_bin_px", "peak_angle_deg", "peak_distance_px",
+    "fit_distance_px", "max_gap_px", "min_support_ratio", "seed", "horizon_min_piece_px", "horizon_max_angle_deg",
+    "horizon_merge_angle_deg", "horizon_merge_distance_px", "horizon_min_coverage", "low_priority", "learning",
+    "learning_blend", "learning_match_gate", "learning_max_sigma", "learning_mode_radius", "learning_min_region_px",
+    "learning_shrink_px", "learning_horizon_margin_px", "learning_stale_after_s", "learning_create_classes",
+    "learning_persist_frames", "learning_min_new_class_px", "learning_publish_period_s"};
+
+bool boolean(const std::string& origin, const YAML::Node& map, const char* key, bool fallback) {
+  const YAML::Node node = map[key];
+  if (!node) return fallback;
+  try {
+    return node.as<bool>();
+  } catch (const YAML::Exception&) {
+    yaml_reader::fail(origin, node, std::string("'") + key + "' must be true or false");
+  }
+}
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path + ": cannot open the file (check the path and permissions)");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+}  // namespace
 
 LandmarkOptions parseLandmarkParams(const std::string& text, const std::string& origin) {
   using namespace yaml_reader;
   LandmarkOptions o;
   const YAML::Node root = parse(text, origin);
   if (!root || root.IsNull()) return o;
-  checkKeys(origin, root, {"edge_gain", "gray_threshold", "sharp_threshold", "min_object_px", "thin_edges",
-                           "min_votes", "min_line_length_px", "sampling_margin", "max_samples_per_object",
-                           "max_rounds", "max_failed_peaks", "min_pair_distance_px", "theta_bin_deg", "intercept_bin_px",
-                           "peak_angle_deg", "peak_distance_px", "fit_distance_px", "max_gap_px",
-                           "min_support_ratio", "seed", "horizon_min_piece_px", "horizon_max_angle_deg",
-                           "horizon_merge_angle_deg", "horizon_merge_distance_px", "horizon_min_coverage",
-                           "low_priority"});
+  checkKeys(origin, root, kLandmarkFileKeys);
   o.edge_gain = number(origin, root, "edge_gain", o.edge_gain, 0.05, 50);
   o.objects.gray_threshold = static_cast<uint8_t>(number(origin, root, "gray_threshold", o.objects.gray_threshold, 1, 255));
   o.objects.sharp_threshold = static_cast<uint8_t>(number(origin, root, "sharp_threshold", o.objects.sharp_threshold, 1, 255));
   o.objects.min_object_px = static_cast<uint32_t>(number(origin, root, "min_object_px", o.objects.min_object_px, 1, 1e6));
-  if (const YAML::Node thin = root["thin_edges"]) {
-    try {
-      o.objects.thin = thin.as<bool>();
-    } catch (const YAML::Exception&) {
-      fail(origin, thin, "'thin_edges' must be true or false");
-    }
-  }
+  o.objects.thin = boolean(origin, root, "thin_edges", o.objects.thin);
   HoughOptions& h = o.hough;
   h.min_votes = static_cast<int>(number(origin, root, "min_votes", h.min_votes, 1, 1000));
   h.min_line_length_px = number(origin, root, "min_line_length_px", h.min_line_length_px, 5, 2000);
@@ -56,12 +77,30 @@ LandmarkOptions parseLandmarkParams(const std::string& text, const std::string& 
   return o;
 }
 
-LandmarkOptions loadLandmarkParams(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open the file (check the path and permissions)");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parseLandmarkParams(buffer.str(), path);
+LandmarkOptions loadLandmarkParams(const std::string& path) { return parseLandmarkParams(readFile(path), path); }
+
+LearningOptions parseLearningParams(const std::string& text, const std::string& origin) {
+  using namespace yaml_reader;
+  LearningOptions o;
+  const YAML::Node root = parse(text, origin);
+  if (!root || root.IsNull()) return o;
+  checkKeys(origin, root, kLandmarkFileKeys);
+  o.blend = number(origin, root, "learning_blend", o.blend, 0.01, 1);
+  o.match_gate = number(origin, root, "learning_match_gate", o.match_gate, 1, 255);
+  o.max_sigma = number(origin, root, "learning_max_sigma", o.max_sigma, 1, 128);
+  o.mode_radius = number(origin, root, "learning_mode_radius", o.mode_radius, 2, 128);
+  o.min_region_px = static_cast<uint32_t>(number(origin, root, "learning_min_region_px", o.min_region_px, 1, 1e6));
+  o.shrink_px = number(origin, root, "learning_shrink_px", o.shrink_px, 0, 20);
+  o.horizon_margin_px = number(origin, root, "learning_horizon_margin_px", o.horizon_margin_px, 0, 100);
+  o.stale_after_s = number(origin, root, "learning_stale_after_s", o.stale_after_s, 0, 3600);
+  o.create_classes = boolean(origin, root, "learning_create_classes", o.create_classes);
+  o.persist_frames = static_cast<int>(number(origin, root, "learning_persist_frames", o.persist_frames, 1, 10000));
+  o.min_new_class_px = static_cast<uint32_t>(number(origin, root, "learning_min_new_class_px", o.min_new_class_px, 1, 1e6));
+  const std::string problem = validateLearningOptions(o);
+  if (!problem.empty()) fail(origin, root, problem);
+  return o;
 }
+
+LearningOptions loadLearningParams(const std::string& path) { return parseLearningParams(readFile(path), path); }
 
 }  // namespace rle_vision

@@ -72,6 +72,23 @@ void drawColorSwatches(cv::Mat* canvas, const ColorTable& table) {
   }
 }
 
+void drawLearning(cv::Mat* canvas, const std::vector<ColorLearner::Measurement>& measurements) {
+  for (const ColorLearner::Measurement& m : measurements) {
+    std::vector<cv::Point> polygon;
+    for (const cv::Point2d& p : m.region) polygon.emplace_back(cvRound(p.x), cvRound(p.y));
+    if (polygon.size() < 3) continue;
+    const bool applied = m.rejected.empty();
+    const cv::Scalar colour = applied ? cv::Scalar(255, 255, 255) : cv::Scalar(0, 0, 255);
+    if (applied) cv::polylines(*canvas, polygon, true, colour, 1, cv::LINE_AA);
+    if (m.pixels_box.empty()) continue;
+    cv::rectangle(*canvas, m.pixels_box, colour, 1);
+    if (!applied) {
+      cv::putText(*canvas, m.rejected, m.pixels_box.tl() + cv::Point(2, 11), cv::FONT_HERSHEY_PLAIN, 0.8, colour, 1,
+                  cv::LINE_AA);
+    }
+  }
+}
+
 void drawLandmarks(cv::Mat* canvas, const std::vector<DetectedLine>& lines, const HorizonEstimate& horizon,
                    double roll, double pitch) {
   for (const DetectedLine& l : lines) {

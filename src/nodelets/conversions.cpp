@@ -134,6 +134,22 @@ LandmarkOptions optionsFromConfig(const LandmarkConfig& c) {
   return o;
 }
 
+LearningOptions learningFromConfig(const LandmarkConfig& c) {
+  LearningOptions o;
+  o.blend = c.learning_blend;
+  o.match_gate = c.learning_match_gate;
+  o.max_sigma = c.learning_max_sigma;
+  o.mode_radius = c.learning_mode_radius;
+  o.min_region_px = static_cast<uint32_t>(c.learning_min_region_px);
+  o.shrink_px = c.learning_shrink_px;
+  o.horizon_margin_px = c.learning_horizon_margin_px;
+  o.stale_after_s = c.learning_stale_after_s;
+  o.create_classes = c.learning_create_classes;
+  o.persist_frames = c.learning_persist_frames;
+  o.min_new_class_px = static_cast<uint32_t>(c.learning_min_new_class_px);
+  return o;
+}
+
 sensor_msgs::ImagePtr debugImageMsg(const std_msgs::Header& header, const cv::Mat& bgr) {
   return cv_bridge::CvImage(header, "bgr8", bgr).toImageMsg();
 }

@@ -15,6 +15,7 @@
 #include "rle_vision/blob_tracker.h"
 #include "rle_vision/camera_model.h"
 #include "rle_vision/color_class.h"
+#include "rle_vision/color_learning.h"
 #include "rle_vision/landmark_detector.h"
 #include "rle_vision/line_geometry.h"
 #include "rle_vision/pixel_format.h"
@@ -36,6 +37,9 @@ Line lineToMsg(const ImageLine& line, double x1, double y1, double x2, double y2
 // The Landmark nodelet's dynamic parameters as core options (edge_gain belongs to the
 // EdgeDetector and keeps its default).
 LandmarkOptions optionsFromConfig(const LandmarkConfig& config);
+
+// The Landmark nodelet's colour-learning parameters as core options.
+LearningOptions learningFromConfig(const LandmarkConfig& config);
 
 // A bgr8 image message (copied) with the given header.
 sensor_msgs::ImagePtr debugImageMsg(const std_msgs::Header& header, const cv::Mat& bgr);

@@ -1,8 +1,9 @@
 // rle_vision/Landmark: the low-priority landmark node. Edge images go into a one-slot mailbox
 // (a newer frame replaces an unprocessed one, which counts as dropped); a worker thread at low
 // OS priority runs the RLE Hough and the horizon and publishes lines, horizon, rviz markers
-// and a debug overlay. It never queues frames and never holds up the manager's other
-// nodelets (the tracker).
+// and a debug overlay, and (learning on) measures the colours of the objects the lines bound
+// and publishes updated colour ranges for the tracker. It never queues frames and never holds
+// up the manager's other nodelets (the tracker).
 #include <pthread.h>
 #include <sched.h>
 #include <sys/resource.h>
@@ -11,6 +12,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <deque>
 #include <cmath>
 #include <condition_variable>
 #include <limits>
@@ -25,14 +27,18 @@
 #include <nodelet/nodelet.h>
 #include <opencv2/imgproc.hpp>
 #include <pluginlib/class_list_macros.hpp>
+#include <ros/package.h>
 #include <ros/ros.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include "conversions.h"
 #include "processing_stats.h"
+#include "rle_vision/ColorRangeArray.h"
 #include "rle_vision/Horizon.h"
 #include "rle_vision/LandmarkConfig.h"
 #include "rle_vision/LineArray.h"
+#include "rle_vision/color_table.h"
+#include "rle_vision/config_files.h"
 #include "rle_vision/landmark_detector.h"
 #include "rle_vision/overlay.h"
 
@@ -66,23 +72,30 @@ class LandmarkNodelet : public nodelet::Nodelet {
   void workerLoop();
   void process(const sensor_msgs::ImageConstPtr& edges_msg);
   void publishMarkers(const std_msgs::Header& header, const LandmarkResult& result, const PinholeCamera& camera);
+  void learn(const std_msgs::Header& header, const cv::Mat& bgr, const LandmarkResult& result, bool learning,
+             const LearningOptions& options);
+  void publishRanges(const std_msgs::Header& header, const std::vector<ColorClass>& classes);
 
   std::shared_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber sub_edges_, sub_image_;
   ros::Subscriber sub_info_;
-  ros::Publisher pub_lines_, pub_horizon_, pub_markers_;
+  ros::Publisher pub_lines_, pub_horizon_, pub_markers_, pub_ranges_;
   image_transport::Publisher pub_debug_;
   std::mutex connect_mutex_;
   bool low_priority_ = true;
 
   std::mutex config_mutex_;
   LandmarkOptions options_;
+  bool learning_ = true;
+  LearningOptions learning_options_;
+  double publish_period_s_ = 0.5;
   std::shared_ptr<dynamic_reconfigure::Server<LandmarkConfig>> reconfigure_server_;
 
-  // Latest camera_info and colour image (for pitch, markers and the overlay).
+  // Latest camera_info and recent colour images (for pitch, markers, learning, the overlay);
+  // an edge image is paired with the colour image of the same stamp.
   std::mutex inputs_mutex_;
   sensor_msgs::CameraInfoConstPtr camera_info_;
-  sensor_msgs::ImageConstPtr colour_;
+  std::deque<sensor_msgs::ImageConstPtr> colours_;
 
   // The one-slot mailbox and its worker.
   std::mutex mailbox_mutex_;
@@ -95,7 +108,14 @@ class LandmarkNodelet : public nodelet::Nodelet {
   std::shared_ptr<diagnostic_updater::Updater> diagnostics_;
   ros::WallTimer diagnostics_timer_;
   ProcessingStats stats_;
-  LandmarkDetector detector_;  // used by the worker only
+
+  // Used by the worker only.
+  LandmarkDetector detector_;
+  std::vector<ColorClass> configured_classes_;
+  std::unique_ptr<ColorLearner> learner_;
+  bool published_learned_ = false, ranges_pending_ = false;
+  ros::WallTime last_ranges_publish_;
+  cv::Mat bgr_;
 };
 
 LandmarkNodelet::~LandmarkNodelet() {
@@ -112,6 +132,15 @@ void LandmarkNodelet::onInit() {
   ros::NodeHandle& pnh = getPrivateNodeHandle();
   it_ = std::make_shared<image_transport::ImageTransport>(nh);
   pnh.param("low_priority", low_priority_, true);
+  std::string colors_file;
+  pnh.param<std::string>("colors_file", colors_file, ros::package::getPath("rle_vision") + "/config/colors.yaml");
+  try {
+    configured_classes_ = loadColorClasses(colors_file);
+  } catch (const std::exception& e) {
+    NODELET_FATAL("cannot load colour classes for learning: %s. Set ~colors_file (the tracker's file).", e.what());
+    throw;
+  }
+  learner_ = std::make_unique<ColorLearner>(configured_classes_, LearningOptions());
   reconfigure_server_ = std::make_shared<dynamic_reconfigure::Server<LandmarkConfig>>(pnh);
   reconfigure_server_->setCallback([this](LandmarkConfig& config, uint32_t level) { reconfigureCb(config, level); });
 
@@ -130,34 +159,51 @@ void LandmarkNodelet::onInit() {
   pub_horizon_ = nh.advertise<Horizon>("horizon", 5, connect_cb, connect_cb);
   pub_markers_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 2, connect_cb, connect_cb);
   pub_debug_ = image_transport::ImageTransport(pnh).advertise("debug_image", 1, image_connect_cb, image_connect_cb);
+  pub_ranges_ = nh.advertise<ColorRangeArray>("color_ranges", 1, connect_cb, connect_cb, ros::VoidConstPtr(), /*latch=*/true);
   sub_info_ = nh.subscribe("camera_info", 1, &LandmarkNodelet::cameraInfoCb, this);
 }
 
 void LandmarkNodelet::reconfigureCb(LandmarkConfig& config, uint32_t /*level*/) {
   const LandmarkOptions candidate = optionsFromConfig(config);
-  const std::string problem = validateLandmarkOptions(candidate);
-  std::lock_guard<std::mutex> lock(config_mutex_);
-  if (!problem.empty()) {
-    NODELET_WARN("refusing landmark parameters: %s; keeping the previous ones", problem.c_str());
-    return;
+  const LearningOptions learning = learningFromConfig(config);
+  std::string problem = validateLandmarkOptions(candidate);
+  if (problem.empty()) problem = validateLearningOptions(learning);
+  if (problem.empty() && !std::isfinite(config.learning_publish_period_s)) problem = "learning_publish_period_s is not a number";
+  {
+    std::lock_guard<std::mutex> lock(config_mutex_);
+    if (!problem.empty()) {
+      NODELET_WARN("refusing landmark parameters: %s; keeping the previous ones", problem.c_str());
+      return;
+    }
+    options_ = candidate;
+    learning_options_ = learning;
+    learning_ = config.learning;
+    publish_period_s_ = config.learning_publish_period_s;
   }
-  options_ = candidate;
+  if (pub_ranges_) connectCb();  // learning on or off changes what is subscribed
 }
 
 void LandmarkNodelet::connectCb() {
+  bool learning;
+  {
+    std::lock_guard<std::mutex> lock(config_mutex_);
+    learning = learning_;
+  }
   std::lock_guard<std::mutex> lock(connect_mutex_);
-  const bool wanted = pub_lines_.getNumSubscribers() > 0 || pub_horizon_.getNumSubscribers() > 0 ||
+  // Learning feeds the tracker (a color_ranges subscriber) even when nobody watches lines.
+  const bool feeding = learning && pub_ranges_.getNumSubscribers() > 0;
+  const bool wanted = feeding || pub_lines_.getNumSubscribers() > 0 || pub_horizon_.getNumSubscribers() > 0 ||
                       pub_markers_.getNumSubscribers() > 0 || pub_debug_.getNumSubscribers() > 0;
   if (!wanted) {
     sub_edges_.shutdown();
   } else if (!sub_edges_) {
     sub_edges_ = it_->subscribe("edges", 1, &LandmarkNodelet::edgesCb, this);
   }
-  // The colour image only feeds the overlay.
-  if (pub_debug_.getNumSubscribers() == 0) {
+  // The colour image feeds learning and the overlay.
+  if (!feeding && pub_debug_.getNumSubscribers() == 0) {
     sub_image_.shutdown();
   } else if (!sub_image_) {
-    sub_image_ = it_->subscribe("image_raw", 1, &LandmarkNodelet::imageCb, this);
+    sub_image_ = it_->subscribe("image_raw", 2, &LandmarkNodelet::imageCb, this);
   }
 }
 
@@ -168,7 +214,8 @@ void LandmarkNodelet::cameraInfoCb(const sensor_msgs::CameraInfoConstPtr& msg) {
 
 void LandmarkNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
   std::lock_guard<std::mutex> lock(inputs_mutex_);
-  colour_ = msg;
+  colours_.push_back(msg);
+  while (colours_.size() > 8) colours_.pop_front();  // a few frames cover the edge detector's delay
 }
 
 void LandmarkNodelet::edgesCb(const sensor_msgs::ImageConstPtr& msg) {
@@ -216,16 +263,36 @@ void LandmarkNodelet::process(const sensor_msgs::ImageConstPtr& msg) {
     return;
   }
   LandmarkOptions options;
+  LearningOptions learning_options;
+  bool learning;
   {
     std::lock_guard<std::mutex> lock(config_mutex_);
     options = options_;
+    learning_options = learning_options_;
+    learning = learning_;
   }
   sensor_msgs::CameraInfoConstPtr info;
   sensor_msgs::ImageConstPtr colour;
   {
     std::lock_guard<std::mutex> lock(inputs_mutex_);
     info = camera_info_;
-    colour = colour_;
+    for (const sensor_msgs::ImageConstPtr& c : colours_) {
+      if (c->header.stamp == msg->header.stamp) colour = c;
+    }
+  }
+  // The colour image of this frame, as BGR (a view when it already is).
+  cv::Mat bgr;
+  if (colour) {
+    PixelFormat colour_format;
+    cv::Mat colour_view;
+    if (viewImage(*colour, &colour_format, &colour_view, &error)) {
+      if (colour_format == PixelFormat::BGR8) {
+        bgr = colour_view;
+      } else {
+        bgr_ = toDisplayBgr(colour_view, colour_format);
+        bgr = bgr_;
+      }
+    }
   }
   PinholeCamera camera;
   const bool have_camera = info && cameraFromInfo(*info, &camera) && camera.width == edges.cols &&
@@ -260,20 +327,65 @@ void LandmarkNodelet::process(const sensor_msgs::ImageConstPtr& msg) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   pub_lines_.publish(lines);
   pub_horizon_.publish(horizon);
+  if (learning && !bgr.empty() && bgr.size() == edges.size()) {
+    learn(msg->header, bgr, result, true, learning_options);
+  } else if (learning) {
+    NODELET_WARN_THROTTLE(10.0, "learning is on but no colour image (image_raw) of the edge image's size and stamp "
+                          "arrived, so no colours are measured; image_raw and edges must come from the same camera");
+  } else {
+    learn(msg->header, bgr, result, false, learning_options);
+  }
   if (have_camera && pub_markers_.getNumSubscribers() > 0) publishMarkers(msg->header, result, camera);
   if (pub_debug_.getNumSubscribers() > 0) {
     cv::Mat canvas;
-    PixelFormat colour_format;
-    cv::Mat colour_view;
-    if (colour && colour->header.stamp == msg->header.stamp && viewImage(*colour, &colour_format, &colour_view, &error)) {
-      canvas = toDisplayBgr(colour_view, colour_format);
+    if (!bgr.empty()) {
+      canvas = bgr.clone();
     } else {
       cv::cvtColor(edges, canvas, cv::COLOR_GRAY2BGR);
     }
     drawLandmarks(&canvas, result.lines, result.horizon, horizon->roll, horizon->pitch);
+    if (learning) {
+      drawLearning(&canvas, learner_->lastMeasurements());
+      drawColorSwatches(&canvas, ColorTable(learner_->classes()));
+    }
     pub_debug_.publish(debugImageMsg(msg->header, canvas));
   }
   stats_.addFrame(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+}
+
+void LandmarkNodelet::learn(const std_msgs::Header& header, const cv::Mat& bgr, const LandmarkResult& result,
+                            bool learning, const LearningOptions& options) {
+  if (!learning) {
+    // Learning switched off: hand the tracker its configured ranges back, once.
+    if (published_learned_) {
+      learner_ = std::make_unique<ColorLearner>(configured_classes_, options);
+      publishRanges(header, configured_classes_);
+      published_learned_ = false;
+      ranges_pending_ = false;
+    }
+    return;
+  }
+  learner_->setOptions(options);
+  ranges_pending_ = learner_->update(bgr, result, detector_.edgeObjects(), header.stamp.toSec()) || ranges_pending_;
+  double period;
+  {
+    std::lock_guard<std::mutex> lock(config_mutex_);
+    period = publish_period_s_;
+  }
+  const ros::WallTime now = ros::WallTime::now();
+  if (ranges_pending_ && (last_ranges_publish_.isZero() || (now - last_ranges_publish_).toSec() >= period)) {
+    publishRanges(header, learner_->classes());
+    last_ranges_publish_ = now;
+    published_learned_ = true;
+    ranges_pending_ = false;
+  }
+}
+
+void LandmarkNodelet::publishRanges(const std_msgs::Header& header, const std::vector<ColorClass>& classes) {
+  auto msg = boost::make_shared<ColorRangeArray>();
+  msg->header = header;
+  for (const ColorClass& c : classes) msg->ranges.push_back(colorRangeToMsg(c));
+  pub_ranges_.publish(msg);
 }
 
 void LandmarkNodelet::publishMarkers(const std_msgs::Header& header, const LandmarkResult& result,

@@ -1,6 +1,7 @@
 // rle_vision_monitor: one summary line per second for `make demo`: frame rate, blobs per class,
 // tracker time per frame, image-stamp-to-blobs latency, and (when the landmark node runs)
-// lines per frame, the horizon's roll and pitch and the landmark time. Exits after
+// lines per frame, the horizon's roll and pitch, the landmark time and how many colour classes
+// have learned ranges (with the updates this second). Exits after
 // ~duration_s (> 0).
 #include <algorithm>
 #include <cmath>
@@ -12,6 +13,7 @@
 #include <ros/ros.h>
 
 #include "rle_vision/BlobArray.h"
+#include "rle_vision/ColorRangeArray.h"
 #include "rle_vision/Horizon.h"
 #include "rle_vision/LineArray.h"
 
@@ -25,6 +27,7 @@ class Monitor {
     sub_blobs_ = nh.subscribe("blobs", 10, &Monitor::blobsCb, this);
     sub_lines_ = nh.subscribe("lines", 10, &Monitor::linesCb, this);
     sub_horizon_ = nh.subscribe("horizon", 10, &Monitor::horizonCb, this);
+    sub_ranges_ = nh.subscribe("color_ranges", 10, &Monitor::rangesCb, this);
     start_ = ros::WallTime::now();
     timer_ = nh.createWallTimer(ros::WallDuration(1.0), &Monitor::report, this);
   }
@@ -53,8 +56,22 @@ class Monitor {
     ++horizon_frames_;
     if (!msg->found) return;
     ++horizon_found_;
-    roll_deg_ = msg->roll * 180.0 / M_PI;
-    pitch_deg_ = msg->pitch * 180.0 / M_PI;
+    // Min and max over the second: the gait sways at about 1 Hz, a single sample would alias.
+    const double roll = msg->roll * 180.0 / M_PI, pitch = msg->pitch * 180.0 / M_PI;
+    roll_deg_[0] = std::min(roll_deg_[0], roll);
+    roll_deg_[1] = std::max(roll_deg_[1], roll);
+    if (std::isfinite(pitch)) {
+      pitch_deg_[0] = std::min(pitch_deg_[0], pitch);
+      pitch_deg_[1] = std::max(pitch_deg_[1], pitch);
+    }
+  }
+
+  void rangesCb(const ColorRangeArrayConstPtr& msg) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++range_updates_;
+    classes_ = static_cast<int>(msg->ranges.size());
+    learned_classes_ = static_cast<int>(
+        std::count_if(msg->ranges.begin(), msg->ranges.end(), [](const ColorRange& r) { return r.source == "learned"; }));
   }
 
   static double percentile(std::vector<double> v, double p) {
@@ -84,15 +101,21 @@ class Monitor {
       }
       if (horizon_frames_ > 0) {
         std::printf(" | horizon %d%%", 100 * horizon_found_ / horizon_frames_);
-        if (horizon_found_ > 0) std::printf(" roll %+.1f pitch %+.1f deg", roll_deg_, pitch_deg_);
+        if (horizon_found_ > 0) std::printf(" roll %+.1f..%+.1f", roll_deg_[0], roll_deg_[1]);
+        if (pitch_deg_[0] <= pitch_deg_[1]) std::printf(" pitch %+.1f..%+.1f", pitch_deg_[0], pitch_deg_[1]);
+        if (horizon_found_ > 0) std::printf(" deg");
       }
+      if (classes_ > 0) std::printf(" | ranges learned %d/%d (%d updates)", learned_classes_, classes_, range_updates_);
       std::printf("\n");
       std::fflush(stdout);
+      range_updates_ = 0;
       frames_ = 0;
       tracker_ms_sum_ = tracker_ms_max_ = 0;
       landmark_frames_ = horizon_frames_ = horizon_found_ = 0;
       lines_ = 0;
       landmark_ms_sum_ = 0;
+      roll_deg_[0] = pitch_deg_[0] = INFINITY;
+      roll_deg_[1] = pitch_deg_[1] = -INFINITY;
       latencies_ms_.clear();
     }
     if (duration_s_ > 0 && elapsed >= duration_s_ - 0.05) {
@@ -103,7 +126,7 @@ class Monitor {
     }
   }
 
-  ros::Subscriber sub_blobs_, sub_lines_, sub_horizon_;
+  ros::Subscriber sub_blobs_, sub_lines_, sub_horizon_, sub_ranges_;
   ros::WallTimer timer_;
   ros::WallTime start_;
   double duration_s_ = 0;
@@ -114,7 +137,9 @@ class Monitor {
   std::map<std::string, int> last_counts_;
   int landmark_frames_ = 0, horizon_frames_ = 0, horizon_found_ = 0;
   size_t lines_ = 0;
-  double landmark_ms_sum_ = 0, roll_deg_ = 0, pitch_deg_ = 0;
+  double landmark_ms_sum_ = 0;
+  double roll_deg_[2] = {INFINITY, -INFINITY}, pitch_deg_[2] = {INFINITY, -INFINITY};  // min, max
+  int range_updates_ = 0, classes_ = 0, learned_classes_ = 0;
 };
 
 }  // namespace rle_vision

@@ -296,6 +296,28 @@ TEST(LandmarkParams, ShippedFileHoldsTheDefaults) {
   EXPECT_EQ(file.horizon.min_coverage, defaults.horizon.min_coverage);
 }
 
+TEST(LandmarkParams, ShippedFileHoldsTheLearningDefaults) {
+  const LearningOptions file = loadLearningParams(test::sourcePath("config/landmark.yaml"));
+  const LearningOptions defaults;
+  EXPECT_EQ(file.blend, defaults.blend);
+  EXPECT_EQ(file.match_gate, defaults.match_gate);
+  EXPECT_EQ(file.max_sigma, defaults.max_sigma);
+  EXPECT_EQ(file.mode_radius, defaults.mode_radius);
+  EXPECT_EQ(file.min_region_px, defaults.min_region_px);
+  EXPECT_EQ(file.shrink_px, defaults.shrink_px);
+  EXPECT_EQ(file.horizon_margin_px, defaults.horizon_margin_px);
+  EXPECT_EQ(file.stale_after_s, defaults.stale_after_s);
+  EXPECT_EQ(file.create_classes, defaults.create_classes);
+  EXPECT_EQ(file.persist_frames, defaults.persist_frames);
+  EXPECT_EQ(file.min_new_class_px, defaults.min_new_class_px);
+  EXPECT_EQ(parseLearningParams("learning_blend: 0.5\nlearning_create_classes: true\n", "l.yaml").blend, 0.5);
+  EXPECT_TRUE(parseLearningParams("learning_create_classes: true\n", "l.yaml").create_classes);
+  EXPECT_THROW(parseLearningParams("learning_blend: .nan\n", "l.yaml"), ConfigError);
+  EXPECT_THROW(parseLearningParams("learning_blend: 0\n", "l.yaml"), ConfigError);
+  EXPECT_THROW(parseLearningParams("learning_create_classes: maybe\n", "l.yaml"), ConfigError);
+  EXPECT_THROW(parseLearningParams("learning_blnd: 0.3\n", "l.yaml"), ConfigError);
+}
+
 TEST(LandmarkParams, BrokenFilesFailWithTheLine) {
   try {
     parseLandmarkParams("min_votes: 5\nfit_distanse_px: 3\n", "l.yaml");

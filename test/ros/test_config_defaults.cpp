@@ -40,6 +40,22 @@ TEST(ConfigDefaults, LandmarkConfigMatchesCoreDefaults) {
   EXPECT_EQ(from_config.horizon.min_coverage, core.horizon.min_coverage);
 }
 
+TEST(ConfigDefaults, LearningConfigMatchesCoreDefaults) {
+  const LearningOptions from_config = learningFromConfig(LandmarkConfig::__getDefault__());
+  const LearningOptions core;
+  EXPECT_EQ(from_config.blend, core.blend);
+  EXPECT_EQ(from_config.match_gate, core.match_gate);
+  EXPECT_EQ(from_config.max_sigma, core.max_sigma);
+  EXPECT_EQ(from_config.mode_radius, core.mode_radius);
+  EXPECT_EQ(from_config.min_region_px, core.min_region_px);
+  EXPECT_EQ(from_config.shrink_px, core.shrink_px);
+  EXPECT_EQ(from_config.horizon_margin_px, core.horizon_margin_px);
+  EXPECT_EQ(from_config.stale_after_s, core.stale_after_s);
+  EXPECT_EQ(from_config.create_classes, core.create_classes);
+  EXPECT_EQ(from_config.persist_frames, core.persist_frames);
+  EXPECT_EQ(from_config.min_new_class_px, core.min_new_class_px);
+}
+
 TEST(ConfigDefaults, EdgeDetectorAndTrackerConfigsMatchCoreDefaults) {
   EXPECT_EQ(EdgeDetectorConfig::__getDefault__().edge_gain, LandmarkOptions().edge_gain);
   const TrackerConfig tracker = TrackerConfig::__getDefault__();
