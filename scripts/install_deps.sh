@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake catkin ros-core-dev
   libroscpp-dev libnodelet-dev libnodeletlib-dev libnodeletlib-tools pluginlib-dev
-  libcv-bridge-dev libimage-transport-dev libtf2-ros-dev libtf2-eigen-dev libtf2-dev
+  libcv-bridge-dev libimage-transport-dev libmessage-filters-dev libtf2-ros-dev libtf2-eigen-dev libtf2-dev
   libopencv-dev libeigen3-dev libyaml-cpp-dev
   ros-sensor-msgs ros-geometry-msgs ros-visualization-msgs ros-std-msgs
   python3-sensor-msgs python3-geometry-msgs python3-std-msgs python3-visualization-msgs

@@ -18,6 +18,9 @@ struct Region {
   int left = 0, top = 0, right = 0, bottom = 0;  // bounding box, inclusive, px
   double var_xx = 0, var_yy = 0, var_xy = 0;  // central second moments / area, px^2
   double angle = 0;     // major-axis orientation, rad, in (-pi/2, pi/2], from +x towards +y
+  // Lowest row of the region in column round(cx) (`bottom` when that column holds none of its
+  // pixels): where an object standing on the ground touches it, whatever the camera's roll.
+  int bottom_at_cx = 0;
   int32_t root_run = -1;  // index of the region's root run (its first run in row-major order)
 };
 
@@ -41,6 +44,7 @@ class RegionBuilder {
   };
   std::vector<int32_t> moment_index_;
   std::vector<Moments> moments_;
+  std::vector<int32_t> region_of_moment_;  // index into the output regions, -1 when dropped
 };
 
 // Root of a run's set, with path halving.

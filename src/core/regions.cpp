@@ -67,6 +67,7 @@ void RegionBuilder::build(std::vector<Run>* runs_ptr, const std::vector<int32_t>
     m.bottom = run.y;  // runs come in row order
   }
 
+  region_of_moment_.assign(moments_.size(), -1);
   for (int32_t i = 0; i < static_cast<int32_t>(runs.size()); ++i) {
     if (runs[i].parent != i) continue;
     const Moments& m = moments_[moment_index_[i]];
@@ -91,7 +92,23 @@ void RegionBuilder::build(std::vector<Run>* runs_ptr, const std::vector<int32_t>
     r.angle = 0.5 * std::atan2(2.0 * r.var_xy, r.var_xx - r.var_yy);
     if (r.angle <= -M_PI / 2) r.angle += M_PI;  // atan2(-0, negative) = -pi; keep (-pi/2, pi/2]
     r.root_run = i;
+    r.bottom_at_cx = -1;
+    region_of_moment_[moment_index_[i]] = static_cast<int32_t>(regions->size());
     regions->push_back(r);
+  }
+
+  // Bottom-up over the runs: the first run of a region covering its centroid's column is the
+  // lowest one there.
+  for (int32_t i = static_cast<int32_t>(runs.size()) - 1; i >= 0; --i) {
+    const int32_t r = region_of_moment_[moment_index_[runs[i].parent]];
+    if (r < 0) continue;
+    Region& region = (*regions)[r];
+    if (region.bottom_at_cx >= 0) continue;
+    const int column = static_cast<int>(std::lround(region.cx));
+    if (runs[i].x0 <= column && column <= runs[i].x1) region.bottom_at_cx = runs[i].y;
+  }
+  for (Region& region : *regions) {
+    if (region.bottom_at_cx < 0) region.bottom_at_cx = region.bottom;
   }
 }
 

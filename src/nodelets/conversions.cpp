@@ -85,6 +85,7 @@ Blob blobToMsg(const TrackedBlob& blob, const std::string& color_name) {
   b.top = static_cast<uint32_t>(r.top);
   b.right = static_cast<uint32_t>(r.right);
   b.bottom = static_cast<uint32_t>(r.bottom);
+  b.bottom_at_cx = static_cast<uint32_t>(r.bottom_at_cx);
   b.vx = static_cast<float>(blob.vx);
   b.vy = static_cast<float>(blob.vy);
   b.angle = static_cast<float>(r.angle);
@@ -162,6 +163,24 @@ bool cameraFromInfo(const sensor_msgs::CameraInfo& info, PinholeCamera* camera) 
   camera->cx = info.K[2];
   camera->cy = info.K[5];
   return camera->valid();
+}
+
+bool intrinsicsFromInfo(const sensor_msgs::CameraInfo& info, CameraIntrinsics* intrinsics, std::string* error) {
+  cameraFromInfo(info, &intrinsics->pinhole);
+  intrinsics->distortion_model = info.distortion_model;
+  intrinsics->distortion.assign(info.D.begin(), info.D.end());
+  *error = validateIntrinsics(*intrinsics);
+  return error->empty();
+}
+
+AttitudeFilterOptions attitudeFilterFromConfig(const GroundProjectorConfig& config) {
+  AttitudeFilterOptions o;
+  o.smoothing = config.attitude_smoothing;
+  o.min_confidence = config.horizon_min_confidence;
+  o.max_jump_deg = config.attitude_max_jump_deg;
+  o.max_rejected = config.attitude_max_rejected;
+  o.max_hold_s = config.attitude_max_hold_s;
+  return o;
 }
 
 }  // namespace rle_vision

@@ -9,6 +9,7 @@
 #include <sensor_msgs/Image.h>
 
 #include "rle_vision/Blob.h"
+#include "rle_vision/GroundProjectorConfig.h"
 #include "rle_vision/LandmarkConfig.h"
 #include "rle_vision/ColorRangeArray.h"
 #include "rle_vision/Line.h"
@@ -16,6 +17,7 @@
 #include "rle_vision/camera_model.h"
 #include "rle_vision/color_class.h"
 #include "rle_vision/color_learning.h"
+#include "rle_vision/ground_projection.h"
 #include "rle_vision/landmark_detector.h"
 #include "rle_vision/line_geometry.h"
 #include "rle_vision/pixel_format.h"
@@ -46,5 +48,11 @@ sensor_msgs::ImagePtr debugImageMsg(const std_msgs::Header& header, const cv::Ma
 
 // The pinhole model of a camera_info (K only); false when K is unusable.
 bool cameraFromInfo(const sensor_msgs::CameraInfo& info, PinholeCamera* camera);
+
+// K, the distortion model and D of a camera_info; false (with the reason) when unusable.
+bool intrinsicsFromInfo(const sensor_msgs::CameraInfo& info, CameraIntrinsics* intrinsics, std::string* error);
+
+// The GroundProjector's attitude filter parameters as core options.
+AttitudeFilterOptions attitudeFilterFromConfig(const GroundProjectorConfig& config);
 
 }  // namespace rle_vision

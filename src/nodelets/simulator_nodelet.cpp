@@ -142,6 +142,7 @@ SceneTruth SimulatorNodelet::truthMsg(const SimFrame& frame, const std_msgs::Hea
     o.position.y = box.position_m.y();
     o.width_m = static_cast<float>(box.width_m);
     o.depth_m = static_cast<float>(box.depth_m);
+    o.yaw_rad = static_cast<float>(box.yaw_rad);
     o.height_m = static_cast<float>(box.height_m);
     truth.objects.push_back(o);
   }

@@ -135,7 +135,7 @@ int main(int argc, char** argv) {
       const Region& r = blobs[i].region;
       json << (i ? "," : "") << "{\"id\":" << blobs[i].id << ",\"color\":" << jsonString(table->classes()[r.label - 1].name)
            << ",\"area\":" << r.area << ",\"cx\":" << number(r.cx) << ",\"cy\":" << number(r.cy) << ",\"left\":" << r.left
-           << ",\"top\":" << r.top << ",\"right\":" << r.right << ",\"bottom\":" << r.bottom
+           << ",\"top\":" << r.top << ",\"right\":" << r.right << ",\"bottom\":" << r.bottom << ",\"bottom_at_cx\":" << r.bottom_at_cx
            << ",\"angle\":" << number(r.angle) << "}";
     }
     json << "],\"lines\":[";

@@ -1,7 +1,8 @@
 // rle_vision_monitor: one summary line per second for `make demo`: frame rate, blobs per class,
 // tracker time per frame, image-stamp-to-blobs latency, and (when the landmark node runs)
 // lines per frame, the horizon's roll and pitch, the landmark time and how many colour classes
-// have learned ranges (with the updates this second). Exits after
+// have learned ranges (with the updates this second), and the obstacles placed on the ground
+// (how many, the nearest). Exits after
 // ~duration_s (> 0).
 #include <algorithm>
 #include <cmath>
@@ -16,6 +17,7 @@
 #include "rle_vision/ColorRangeArray.h"
 #include "rle_vision/Horizon.h"
 #include "rle_vision/LineArray.h"
+#include "rle_vision/ObstacleArray.h"
 
 namespace rle_vision {
 
@@ -28,6 +30,7 @@ class Monitor {
     sub_lines_ = nh.subscribe("lines", 10, &Monitor::linesCb, this);
     sub_horizon_ = nh.subscribe("horizon", 10, &Monitor::horizonCb, this);
     sub_ranges_ = nh.subscribe("color_ranges", 10, &Monitor::rangesCb, this);
+    sub_obstacles_ = nh.subscribe("obstacles", 10, &Monitor::obstaclesCb, this);
     start_ = ros::WallTime::now();
     timer_ = nh.createWallTimer(ros::WallDuration(1.0), &Monitor::report, this);
   }
@@ -74,6 +77,17 @@ class Monitor {
         std::count_if(msg->ranges.begin(), msg->ranges.end(), [](const ColorRange& r) { return r.source == "learned"; }));
   }
 
+  void obstaclesCb(const ObstacleArrayConstPtr& msg) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++obstacle_frames_;
+    obstacles_ = static_cast<int>(msg->obstacles.size());
+    nearest_ = nullptr;
+    last_obstacles_ = msg;
+    for (const Obstacle& o : msg->obstacles) {
+      if (!nearest_ || o.range_m < nearest_->range_m) nearest_ = &o;
+    }
+  }
+
   static double percentile(std::vector<double> v, double p) {
     if (v.empty()) return 0;
     const size_t i = std::min(v.size() - 1, static_cast<size_t>(p * v.size()));
@@ -106,9 +120,15 @@ class Monitor {
         if (horizon_found_ > 0) std::printf(" deg");
       }
       if (classes_ > 0) std::printf(" | ranges learned %d/%d (%d updates)", learned_classes_, classes_, range_updates_);
+      if (obstacle_frames_ > 0) {
+        std::printf(" | %d obstacles", obstacles_);
+        if (nearest_) std::printf(", nearest %s %.2f m at %+.0f deg", nearest_->color.c_str(), nearest_->range_m,
+                                  nearest_->bearing_rad * 180 / M_PI);
+      }
       std::printf("\n");
       std::fflush(stdout);
       range_updates_ = 0;
+      obstacle_frames_ = 0;
       frames_ = 0;
       tracker_ms_sum_ = tracker_ms_max_ = 0;
       landmark_frames_ = horizon_frames_ = horizon_found_ = 0;
@@ -126,7 +146,7 @@ class Monitor {
     }
   }
 
-  ros::Subscriber sub_blobs_, sub_lines_, sub_horizon_, sub_ranges_;
+  ros::Subscriber sub_blobs_, sub_lines_, sub_horizon_, sub_ranges_, sub_obstacles_;
   ros::WallTimer timer_;
   ros::WallTime start_;
   double duration_s_ = 0;
@@ -140,6 +160,9 @@ class Monitor {
   double landmark_ms_sum_ = 0;
   double roll_deg_[2] = {INFINITY, -INFINITY}, pitch_deg_[2] = {INFINITY, -INFINITY};  // min, max
   int range_updates_ = 0, classes_ = 0, learned_classes_ = 0;
+  int obstacle_frames_ = 0, obstacles_ = 0;
+  ObstacleArrayConstPtr last_obstacles_;  // owns what nearest_ points into
+  const Obstacle* nearest_ = nullptr;
 };
 
 }  // namespace rle_vision

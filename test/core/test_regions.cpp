@@ -14,7 +14,9 @@ namespace rle_vision {
 namespace {
 
 // Pixel-by-pixel breadth-first flood fill; regions in raster order of their first pixel.
-std::vector<Region> floodFillRegions(const cv::Mat& labels, Connectivity connectivity) {
+// `pixels`, when given, receives each region's pixels.
+std::vector<Region> floodFillRegions(const cv::Mat& labels, Connectivity connectivity,
+                                     std::vector<std::vector<cv::Point>>* pixels = nullptr) {
   cv::Mat seen = cv::Mat::zeros(labels.size(), CV_8UC1);
   std::vector<Region> regions;
   for (int y0 = 0; y0 < labels.rows; ++y0) {
@@ -27,11 +29,13 @@ std::vector<Region> floodFillRegions(const cv::Mat& labels, Connectivity connect
       r.left = r.right = x0;
       r.top = r.bottom = y0;
       std::queue<cv::Point> queue;
+      std::vector<cv::Point> members;
       queue.push({x0, y0});
       seen.at<uint8_t>(y0, x0) = 1;
       while (!queue.empty()) {
         const cv::Point p = queue.front();
         queue.pop();
+        members.push_back(p);
         n += 1;
         sx += p.x;
         sy += p.y;
@@ -60,6 +64,7 @@ std::vector<Region> floodFillRegions(const cv::Mat& labels, Connectivity connect
       r.var_yy = syy / n - r.cy * r.cy;
       r.var_xy = sxy / n - r.cx * r.cy;
       regions.push_back(r);
+      if (pixels) pixels->push_back(std::move(members));
     }
   }
   return regions;
@@ -79,7 +84,8 @@ std::vector<Region> rleRegions(const cv::Mat& labels, Connectivity connectivity,
 }
 
 void expectSameRegions(const cv::Mat& labels, Connectivity connectivity, const std::string& what) {
-  const std::vector<Region> expected = floodFillRegions(labels, connectivity);
+  std::vector<std::vector<cv::Point>> pixels;
+  const std::vector<Region> expected = floodFillRegions(labels, connectivity, &pixels);
   const std::vector<Region> actual = rleRegions(labels, connectivity);
   ASSERT_EQ(actual.size(), expected.size()) << what;
   for (size_t i = 0; i < expected.size(); ++i) {
@@ -98,6 +104,15 @@ void expectSameRegions(const cv::Mat& labels, Connectivity connectivity, const s
     ASSERT_NEAR(a.var_xy, e.var_xy, 1e-6) << what;
     ASSERT_GT(a.angle, -M_PI / 2) << what;
     ASSERT_LE(a.angle, M_PI / 2) << what;
+    // The lowest pixel of this region in its centroid's column, found pixel by pixel (the
+    // region's own cx picks the column: a last-bit difference must not pick another one).
+    const int column = static_cast<int>(std::lround(a.cx));
+    int bottom_at_cx = -1;
+    for (const cv::Point& p : pixels[i]) {
+      if (p.x == column) bottom_at_cx = std::max(bottom_at_cx, p.y);
+    }
+    if (bottom_at_cx < 0) bottom_at_cx = e.bottom;
+    ASSERT_EQ(a.bottom_at_cx, bottom_at_cx) << what << " region " << i;
   }
 }
 

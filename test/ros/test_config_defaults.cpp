@@ -4,6 +4,7 @@
 
 #include "../../src/nodelets/conversions.h"
 #include "rle_vision/EdgeDetectorConfig.h"
+#include "rle_vision/GroundProjectorConfig.h"
 #include "rle_vision/TrackerConfig.h"
 #include "rle_vision/blob_tracker.h"
 #include "rle_vision/segmenter.h"
@@ -54,6 +55,16 @@ TEST(ConfigDefaults, LearningConfigMatchesCoreDefaults) {
   EXPECT_EQ(from_config.create_classes, core.create_classes);
   EXPECT_EQ(from_config.persist_frames, core.persist_frames);
   EXPECT_EQ(from_config.min_new_class_px, core.min_new_class_px);
+}
+
+TEST(ConfigDefaults, GroundProjectorConfigMatchesCoreDefaults) {
+  const AttitudeFilterOptions from_config = attitudeFilterFromConfig(GroundProjectorConfig::__getDefault__());
+  const AttitudeFilterOptions core;
+  EXPECT_EQ(from_config.smoothing, core.smoothing);
+  EXPECT_EQ(from_config.min_confidence, core.min_confidence);
+  EXPECT_EQ(from_config.max_jump_deg, core.max_jump_deg);
+  EXPECT_EQ(from_config.max_rejected, core.max_rejected);
+  EXPECT_EQ(from_config.max_hold_s, core.max_hold_s);
 }
 
 TEST(ConfigDefaults, EdgeDetectorAndTrackerConfigsMatchCoreDefaults) {

@@ -1,0 +1,134 @@
+#!/usr/bin/env python3
+"""rostest: simulator -> pipeline -> GroundProjector. Every obstacle of a whole box (one piece,
+touching no other box, contact point in view) at 0.3-4 m must lie on that box's true footprint:
+its distance to the footprint's edge within ~max_error_ratio of its range. With the horizon as
+the attitude source (~expect_horizon) the simulator publishes no tf; the camera attitude
+published for fusion must then match the true roll and pitch (median error < 0.5 deg)."""
+import math
+import sys
+import threading
+import unittest
+
+import rospy
+import rostest
+from geometry_msgs.msg import QuaternionStamped
+from rle_vision.msg import BlobArray, ObstacleArray, SceneTruth
+from sensor_msgs.msg import Imu
+
+sys.path.insert(0, __file__.rsplit('/', 1)[0])
+from truth_matching import clear_objects  # noqa: E402
+
+FRAMES = 90  # 3 s: every phase of the gait
+
+
+def iou(a, b):
+    left, top = max(a[0], b[0]), max(a[1], b[1])
+    right, bottom = min(a[2], b[2]), min(a[3], b[3])
+    inter = max(0, right - left + 1) * max(0, bottom - top + 1)
+    area = lambda r: (r[2] - r[0] + 1) * (r[3] - r[1] + 1)  # noqa: E731
+    return inter / float(area(a) + area(b) - inter)
+
+
+def distance_to_footprint_edge(obj, x, y):
+    """Distance from a ground point to the edge of the box's footprint rectangle."""
+    dx, dy = x - obj.position.x, y - obj.position.y
+    c, s = math.cos(obj.yaw_rad), math.sin(obj.yaw_rad)
+    lx, ly = c * dx + s * dy, -s * dx + c * dy
+    ox, oy = abs(lx) - 0.5 * obj.depth_m, abs(ly) - 0.5 * obj.width_m
+    if ox > 0 or oy > 0:
+        return math.hypot(max(ox, 0.0), max(oy, 0.0))
+    return min(-ox, -oy)
+
+
+def roll_pitch(q):
+    """Roll and pitch (rad) of a quaternion q = Rz(yaw) Ry(pitch) Rx(roll)."""
+    roll = math.atan2(2 * (q.w * q.x + q.y * q.z), 1 - 2 * (q.x * q.x + q.y * q.y))
+    pitch = math.asin(max(-1.0, min(1.0, 2 * (q.w * q.y - q.z * q.x))))
+    return roll, pitch
+
+
+def median(values):
+    values = sorted(values)
+    return values[len(values) // 2]
+
+
+class GroundProjectionTest(unittest.TestCase):
+    def setUp(self):
+        self.lock = threading.Lock()
+        self.truth, self.blobs, self.obstacles, self.attitude, self.imu = {}, {}, {}, {}, {}
+        rospy.Subscriber('camera/ground_truth/scene', SceneTruth, self.store(self.truth), queue_size=500)
+        rospy.Subscriber('camera/blobs', BlobArray, self.store(self.blobs), queue_size=500)
+        rospy.Subscriber('camera/obstacles', ObstacleArray, self.store(self.obstacles), queue_size=500)
+        rospy.Subscriber('camera/camera_attitude', QuaternionStamped, self.store(self.attitude), queue_size=500)
+        rospy.Subscriber('camera/camera_attitude_imu', Imu, self.store(self.imu), queue_size=500)
+
+    def store(self, table):
+        def callback(msg):
+            with self.lock:
+                table[msg.header.stamp] = msg
+        return callback
+
+    def test_obstacles_lie_on_the_true_footprints(self):
+        expect_horizon = rospy.get_param('~expect_horizon')
+        max_error_ratio = rospy.get_param('~max_error_ratio')
+        deadline = rospy.Time.now() + rospy.Duration(90)
+        while not rospy.is_shutdown() and rospy.Time.now() < deadline:
+            with self.lock:
+                if len(set(self.truth) & set(self.blobs) & set(self.obstacles)) >= FRAMES:
+                    break
+            rospy.sleep(0.2)
+        with self.lock:
+            stamps = sorted(set(self.truth) & set(self.blobs) & set(self.obstacles))
+            frames = [(self.truth[s], self.blobs[s], self.obstacles[s]) for s in stamps]
+            attitudes = [(self.truth[s], self.attitude[s]) for s in sorted(set(self.truth) & set(self.attitude))]
+            imus = [self.imu[s] for s in sorted(self.imu)]
+        self.assertGreaterEqual(len(frames), FRAMES, 'too few obstacle messages paired with ground truth by stamp')
+
+        errors, clipped_checked = [], 0
+        for truth, blobs, obstacles in frames:
+            self.assertEqual(obstacles.header.frame_id, 'base_link')
+            blob_by_id = {b.id: b for b in blobs.blobs}
+            for o in obstacles.obstacles:
+                blob = blob_by_id[o.blob_id]  # every obstacle comes from a blob of the same image
+                self.assertEqual(o.color, blob.color)
+                self.assertAlmostEqual(o.range_m, math.hypot(o.position.x, o.position.y), places=4)
+                self.assertAlmostEqual(o.bearing_rad, math.atan2(o.position.y, o.position.x), places=4)
+                if o.clipped:
+                    self.assertGreaterEqual(blob.bottom_at_cx, blobs.image_height - 1)
+                    clipped_checked += 1
+                    continue
+                if not 0.3 <= o.range_m <= 4.0:
+                    continue
+                box = (blob.left, blob.top, blob.right, blob.bottom)
+                for obj in clear_objects(truth, min_area=200):
+                    if obj.color == blob.color and iou(box, (obj.left, obj.top, obj.right, obj.bottom)) >= 0.5:
+                        errors.append((distance_to_footprint_edge(obj, o.position.x, o.position.y) / o.range_m,
+                                       obj.name, o.range_m))
+        self.assertGreater(len(errors), 2 * FRAMES, 'too few obstacles matched to whole boxes')
+        ratios = [e[0] for e in errors]
+        worst = max(errors)
+        rospy.loginfo('attitude from %s: %d obstacles on whole boxes, distance to the true footprint median %.2f%%, '
+                      'worst %.2f%% of range (%s at %.2f m)', 'the horizon' if expect_horizon else 'tf',
+                      len(errors), 100 * median(ratios), 100 * worst[0], worst[1], worst[2])
+        self.assertLess(worst[0], max_error_ratio)
+
+        if expect_horizon:
+            self.assertGreater(len(attitudes), 0.8 * FRAMES,
+                               '%d camera_attitude messages paired with ground truth' % len(attitudes))
+            roll_errors = [abs(roll_pitch(a.quaternion)[0] - t.camera_roll) for t, a in attitudes]
+            pitch_errors = [abs(roll_pitch(a.quaternion)[1] - t.camera_pitch) for t, a in attitudes]
+            rospy.loginfo('camera attitude from the horizon over %d frames: median error roll %.3f deg, pitch %.3f deg',
+                          len(attitudes), math.degrees(median(roll_errors)), math.degrees(median(pitch_errors)))
+            self.assertLess(math.degrees(median(roll_errors)), 0.5)
+            self.assertLess(math.degrees(median(pitch_errors)), 0.5)
+            self.assertTrue(all(a.header.frame_id == 'base_link' for _, a in attitudes))
+            # The Imu-style copy for robot_localization: same orientation, yaw unknown, no rates.
+            self.assertGreater(len(imus), 0)
+            self.assertEqual(imus[-1].header.frame_id, 'camera_link')
+            self.assertGreater(imus[-1].orientation_covariance[8], 1e3)
+            self.assertEqual(imus[-1].angular_velocity_covariance[0], -1)
+
+
+if __name__ == '__main__':
+    rospy.init_node('test_ground_projection')
+    rostest.rosrun('rle_vision', 'test_ground_projection', GroundProjectionTest)
