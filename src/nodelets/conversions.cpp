@@ -165,6 +165,39 @@ bool cameraFromInfo(const sensor_msgs::CameraInfo& info, PinholeCamera* camera) 
   return camera->valid();
 }
 
+CmvisionBlobs cmvisionBlobsMsg(const BlobArray& blobs, const ColorTable& table) {
+  CmvisionBlobs out;
+  out.header = blobs.header;
+  out.image_width = blobs.image_width;
+  out.image_height = blobs.image_height;
+  std::vector<std::pair<int, const Blob*>> ordered;
+  for (const Blob& b : blobs.blobs) ordered.emplace_back(table.indexOf(b.color), &b);
+  std::stable_sort(ordered.begin(), ordered.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first < b.first : a.second->area > b.second->area;
+  });
+  for (const auto& entry : ordered) {
+    const Blob& b = *entry.second;
+    CmvisionBlob c;
+    c.name = b.color;
+    if (entry.first >= 0) {
+      const Channels& rgb = table.classes()[entry.first].display_rgb;
+      c.red = rgb[0];
+      c.green = rgb[1];
+      c.blue = rgb[2];
+    }
+    c.area = b.area;
+    c.x = static_cast<uint32_t>(std::rint(b.cx + 0.5));  // cmvision's rounding, kept for drop-in use
+    c.y = static_cast<uint32_t>(std::rint(b.cy + 0.5));
+    c.left = b.left;
+    c.right = b.right;
+    c.top = b.top;
+    c.bottom = b.bottom;
+    out.blobs.push_back(c);
+  }
+  out.blob_count = static_cast<uint32_t>(out.blobs.size());
+  return out;
+}
+
 bool intrinsicsFromInfo(const sensor_msgs::CameraInfo& info, CameraIntrinsics* intrinsics, std::string* error) {
   cameraFromInfo(info, &intrinsics->pinhole);
   intrinsics->distortion_model = info.distortion_model;

@@ -9,6 +9,8 @@
 #include <sensor_msgs/Image.h>
 
 #include "rle_vision/Blob.h"
+#include "rle_vision/BlobArray.h"
+#include "rle_vision/CmvisionBlobs.h"
 #include "rle_vision/GroundProjectorConfig.h"
 #include "rle_vision/LandmarkConfig.h"
 #include "rle_vision/ColorRangeArray.h"
@@ -16,6 +18,7 @@
 #include "rle_vision/blob_tracker.h"
 #include "rle_vision/camera_model.h"
 #include "rle_vision/color_class.h"
+#include "rle_vision/color_table.h"
 #include "rle_vision/color_learning.h"
 #include "rle_vision/ground_projection.h"
 #include "rle_vision/landmark_detector.h"
@@ -34,6 +37,10 @@ bool colorClassesFromMsg(const ColorRangeArray& msg, std::vector<ColorClass>* cl
 ColorRange colorRangeToMsg(const ColorClass& c);
 
 Blob blobToMsg(const TrackedBlob& blob, const std::string& color_name);
+
+// The blobs in cmvision's message shape (cmvision/Blobs), ordered as cmvision orders them: by
+// class, then by area (largest first); colours are the classes' display colours.
+CmvisionBlobs cmvisionBlobsMsg(const BlobArray& blobs, const ColorTable& table);
 Line lineToMsg(const ImageLine& line, double x1, double y1, double x2, double y2, uint32_t votes, uint32_t support);
 
 // The Landmark nodelet's dynamic parameters as core options (edge_gain belongs to the

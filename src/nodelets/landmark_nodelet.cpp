@@ -10,6 +10,7 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <deque>
@@ -108,6 +109,10 @@ class LandmarkNodelet : public nodelet::Nodelet {
   std::shared_ptr<diagnostic_updater::Updater> diagnostics_;
   ros::WallTimer diagnostics_timer_;
   ProcessingStats stats_;
+  // For diagnostics (written by the worker): when color_ranges went out last (wall s, 0: never).
+  std::atomic<double> ranges_published_s_{0};
+  std::atomic<int> learned_classes_{0};
+  std::atomic<bool> learning_enabled_{true};
 
   // Used by the worker only.
   LandmarkDetector detector_;
@@ -146,7 +151,13 @@ void LandmarkNodelet::onInit() {
 
   diagnostics_ = std::make_shared<diagnostic_updater::Updater>(nh, pnh, getName());
   diagnostics_->setHardwareID("none");
-  diagnostics_->add("landmark", [this](diagnostic_updater::DiagnosticStatusWrapper& s) { stats_.report(s, 30.0); });
+  diagnostics_->add("landmark", [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
+    stats_.report(s, 30.0);
+    s.add("colour learning", learning_enabled_.load() ? "on" : "off");
+    s.add("learned colour classes", learned_classes_.load());
+    const double published = ranges_published_s_.load();
+    s.add("colour ranges age (s)", published > 0 ? ros::WallTime::now().toSec() - published : -1.0);
+  });
   diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
 
   worker_ = std::thread(&LandmarkNodelet::workerLoop, this);
@@ -178,6 +189,7 @@ void LandmarkNodelet::reconfigureCb(LandmarkConfig& config, uint32_t /*level*/) 
     options_ = candidate;
     learning_options_ = learning;
     learning_ = config.learning;
+    learning_enabled_ = config.learning;
     publish_period_s_ = config.learning_publish_period_s;
   }
   if (pub_ranges_) connectCb();  // learning on or off changes what is subscribed
@@ -386,6 +398,9 @@ void LandmarkNodelet::publishRanges(const std_msgs::Header& header, const std::v
   msg->header = header;
   for (const ColorClass& c : classes) msg->ranges.push_back(colorRangeToMsg(c));
   pub_ranges_.publish(msg);
+  ranges_published_s_ = ros::WallTime::now().toSec();
+  learned_classes_ = static_cast<int>(
+      std::count_if(classes.begin(), classes.end(), [](const ColorClass& c) { return c.source == "learned"; }));
 }
 
 void LandmarkNodelet::publishMarkers(const std_msgs::Header& header, const LandmarkResult& result,

@@ -1,9 +1,12 @@
 // rle_vision/Simulator: publishes the simulated biped camera view with exact ground truth.
 // Frame n shows the scene at time n / rate_hz, so its content never depends on timing; the
 // stamps come from ros::Time::now() and follow /clock under use_sim_time.
+#include <atomic>
+#include <chrono>
 #include <memory>
 
 #include <cv_bridge/cv_bridge.h>
+#include <diagnostic_updater/diagnostic_updater.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <image_transport/image_transport.h>
 #include <opencv2/imgproc.hpp>
@@ -16,6 +19,7 @@
 #include <tf2_ros/transform_broadcaster.h>
 
 #include "conversions.h"
+#include "processing_stats.h"
 #include "rle_vision/SceneTruth.h"
 #include "rle_vision/color_convert.h"
 #include "rle_vision/config_files.h"
@@ -39,13 +43,18 @@ class SimulatorNodelet : public nodelet::Nodelet {
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   ros::Timer timer_;
+  ros::WallTimer start_timer_;
 
   double rate_hz_ = 30;
   int max_frames_ = 0;
   bool publish_tf_ = true;
   std::string encoding_ = "bgr8";
   std::string optical_frame_, camera_frame_, base_frame_;
-  uint64_t frame_index_ = 0;
+  std::atomic<uint64_t> frame_index_{0};  // read by the diagnostics timer too
+
+  std::shared_ptr<diagnostic_updater::Updater> diagnostics_;
+  ros::WallTimer diagnostics_timer_;
+  ProcessingStats stats_;  // rendering and publishing time per frame
 };
 
 void SimulatorNodelet::onInit() {
@@ -102,7 +111,23 @@ void SimulatorNodelet::onInit() {
     optical.transform.rotation.w = q.w();
     static_broadcaster_.sendTransform(optical);
   }
-  timer_ = nh.createTimer(ros::Duration(1.0 / rate_hz_), &SimulatorNodelet::timerCb, this);
+  diagnostics_ = std::make_shared<diagnostic_updater::Updater>(nh, pnh, getName());
+  diagnostics_->setHardwareID("simulated camera");
+  diagnostics_->add("simulator", [this](diagnostic_updater::DiagnosticStatusWrapper& s) {
+    stats_.report(s, 1000.0 / rate_hz_);
+    s.add("frames published", frame_index_.load());
+  });
+  diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
+  double start_delay_s = 0;
+  pnh.param("start_delay_s", start_delay_s, 0.0);
+  if (!std::isfinite(start_delay_s) || start_delay_s < 0) {
+    NODELET_WARN("~start_delay_s must be a number >= 0, got %f: starting at once", start_delay_s);
+    start_delay_s = 0;
+  }
+  // Waiting lets recorders and lazily subscribing pipelines connect before frame 0.
+  start_timer_ = nh.createWallTimer(ros::WallDuration(std::max(start_delay_s, 1e-3)), [this](const ros::WallTimerEvent&) {
+    timer_ = getNodeHandle().createTimer(ros::Duration(1.0 / rate_hz_), &SimulatorNodelet::timerCb, this);
+  }, /*oneshot=*/true);
 }
 
 sensor_msgs::CameraInfo SimulatorNodelet::cameraInfo(const std_msgs::Header& header) const {
@@ -185,6 +210,7 @@ void SimulatorNodelet::timerCb(const ros::TimerEvent&) {
     timer_.stop();
     return;
   }
+  const auto start = std::chrono::steady_clock::now();
   const SimFrame frame = simulator_->render(frame_index_, frame_index_ / rate_hz_);
   ++frame_index_;
   std_msgs::Header header;
@@ -211,6 +237,7 @@ void SimulatorNodelet::timerCb(const ros::TimerEvent&) {
     pub_labels_.publish(cv_bridge::CvImage(header, "mono8", frame.labels).toImageMsg());
   }
   pub_camera_.publish(image, boost::make_shared<sensor_msgs::CameraInfo>(cameraInfo(header)));
+  stats_.addFrame(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
 }
 
 }  // namespace rle_vision

@@ -1,11 +1,14 @@
 // rle_vision/Tracker: the real-time RLE colour blob tracker. A thin wrapper around the core
-// Segmenter + BlobTracker: converts messages, holds the parameters, publishes blobs.
+// Segmenter + BlobTracker: converts messages, holds the parameters, publishes blobs (and, for
+// cmvision users, the same blobs in cmvision's message shape).
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <memory>
 #include <mutex>
 
+#include <diagnostic_updater/diagnostic_updater.h>
 #include <dynamic_reconfigure/server.h>
 #include <image_transport/image_transport.h>
 #include <nodelet/nodelet.h>
@@ -15,7 +18,9 @@
 #include <ros/ros.h>
 
 #include "conversions.h"
+#include "processing_stats.h"
 #include "rle_vision/BlobArray.h"
+#include "rle_vision/CmvisionBlobs.h"
 #include "rle_vision/ColorRangeArray.h"
 #include "rle_vision/TrackerConfig.h"
 #include "rle_vision/config_files.h"
@@ -33,15 +38,17 @@ class TrackerNodelet : public nodelet::Nodelet {
   void colorRangesCb(const ColorRangeArrayConstPtr& msg);
   void reconfigureCb(TrackerConfig& config, uint32_t level);
   void publishActiveRanges(const ColorTable& table, const ros::Time& stamp);
+  void reportDiagnostics(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   std::shared_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber sub_image_;
   ros::Subscriber sub_ranges_;
-  ros::Publisher pub_blobs_;
+  ros::Publisher pub_blobs_, pub_cmvision_blobs_;
   ros::Publisher pub_active_ranges_;
   image_transport::Publisher pub_debug_;
   std::mutex connect_mutex_;
   int queue_size_ = 1;
+  bool publish_cmvision_blobs_ = false;
 
   // Parameters are copied under this mutex, then frames are processed without it.
   std::mutex config_mutex_;
@@ -52,6 +59,14 @@ class TrackerNodelet : public nodelet::Nodelet {
   // Swapped by colorRangesCb while imageCb segments with its own snapshot.
   SharedColorTable table_;
   std::atomic<bool> warned_mono_{false};
+  // When the current table arrived and where it came from, for diagnostics.
+  std::mutex table_info_mutex_;
+  ros::WallTime table_since_;
+  std::string table_source_ = "config";
+
+  std::shared_ptr<diagnostic_updater::Updater> diagnostics_;
+  ros::WallTimer diagnostics_timer_;
+  ProcessingStats stats_;
 
   // Used only by imageCb, which ROS calls serially.
   Segmenter segmenter_;
@@ -66,6 +81,7 @@ void TrackerNodelet::onInit() {
   it_ = std::make_shared<image_transport::ImageTransport>(nh);
   pnh.param("queue_size", queue_size_, 1);
   queue_size_ = std::max(1, queue_size_);
+  pnh.param("publish_cmvision_blobs", publish_cmvision_blobs_, false);
 
   std::string colors_file;
   pnh.param<std::string>("colors_file", colors_file, ros::package::getPath("rle_vision") + "/config/colors.yaml");
@@ -77,9 +93,14 @@ void TrackerNodelet::onInit() {
     throw;
   }
   NODELET_INFO("loaded %d colour classes from %s", table_.load()->size(), colors_file.c_str());
+  table_since_ = ros::WallTime::now();
 
   reconfigure_server_ = std::make_shared<dynamic_reconfigure::Server<TrackerConfig>>(pnh);
   reconfigure_server_->setCallback([this](TrackerConfig& config, uint32_t level) { reconfigureCb(config, level); });
+  diagnostics_ = std::make_shared<diagnostic_updater::Updater>(nh, pnh, getName());
+  diagnostics_->setHardwareID("none");
+  diagnostics_->add("tracker", [this](diagnostic_updater::DiagnosticStatusWrapper& s) { reportDiagnostics(s); });
+  diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
 
   // Lazy: the image is only subscribed while someone listens to an output.
   std::lock_guard<std::mutex> lock(connect_mutex_);
@@ -88,6 +109,9 @@ void TrackerNodelet::onInit() {
       [this](const image_transport::SingleSubscriberPublisher&) { connectCb(); };
   pub_blobs_ = nh.advertise<BlobArray>("blobs", 10, connect_cb, connect_cb);
   pub_debug_ = image_transport::ImageTransport(pnh).advertise("debug_image", 1, image_connect_cb, image_connect_cb);
+  if (publish_cmvision_blobs_) {
+    pub_cmvision_blobs_ = nh.advertise<CmvisionBlobs>("cmvision_blobs", 10, connect_cb, connect_cb);
+  }
   pub_active_ranges_ = pnh.advertise<ColorRangeArray>("active_color_ranges", 1, /*latch=*/true);
   sub_ranges_ = nh.subscribe("color_ranges", 1, &TrackerNodelet::colorRangesCb, this);
   publishActiveRanges(*table_.load(), ros::Time::now());
@@ -95,7 +119,8 @@ void TrackerNodelet::onInit() {
 
 void TrackerNodelet::connectCb() {
   std::lock_guard<std::mutex> lock(connect_mutex_);
-  if (pub_blobs_.getNumSubscribers() == 0 && pub_debug_.getNumSubscribers() == 0) {
+  if (pub_blobs_.getNumSubscribers() == 0 && pub_debug_.getNumSubscribers() == 0 &&
+      pub_cmvision_blobs_.getNumSubscribers() == 0) {
     sub_image_.shutdown();
   } else if (!sub_image_) {
     sub_image_ = it_->subscribe("image_raw", static_cast<uint32_t>(queue_size_), &TrackerNodelet::imageCb, this);
@@ -138,6 +163,14 @@ void TrackerNodelet::colorRangesCb(const ColorRangeArrayConstPtr& msg) {
   auto table = std::make_shared<const ColorTable>(std::move(classes));
   table_.store(table);
   warned_mono_ = false;
+  {
+    std::lock_guard<std::mutex> lock(table_info_mutex_);
+    table_since_ = ros::WallTime::now();
+    table_source_ = std::any_of(table->classes().begin(), table->classes().end(),
+                                [](const ColorClass& c) { return c.source == "learned"; })
+                        ? "color_ranges (learned)"
+                        : "color_ranges";
+  }
   NODELET_DEBUG("swapped in %d colour classes from color_ranges", table->size());
   publishActiveRanges(*table, msg->header.stamp);
 }
@@ -186,6 +219,10 @@ void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
   out->processing_time_ms = static_cast<float>(
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   pub_blobs_.publish(out);
+  if (pub_cmvision_blobs_.getNumSubscribers() > 0) {
+    pub_cmvision_blobs_.publish(cmvisionBlobsMsg(*out, *table));
+  }
+  stats_.addFrame(out->processing_time_ms);
 
   if (pub_debug_.getNumSubscribers() > 0) {
     cv::Mat canvas = toDisplayBgr(image, format);
@@ -193,6 +230,14 @@ void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
     drawColorSwatches(&canvas, *table);
     pub_debug_.publish(debugImageMsg(msg->header, canvas));
   }
+}
+
+void TrackerNodelet::reportDiagnostics(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  stats_.report(status, 0.5);
+  std::lock_guard<std::mutex> lock(table_info_mutex_);
+  status.add("colour classes", table_.load()->size());
+  status.add("colour ranges from", table_source_);
+  status.add("colour ranges age (s)", (ros::WallTime::now() - table_since_).toSec());
 }
 
 }  // namespace rle_vision

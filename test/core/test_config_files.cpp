@@ -95,6 +95,19 @@ TEST(ColorConfig, CmvisionClassicAndCommentedFilesLoad) {
   EXPECT_EQ(commented[1].max, classic[1].max);
 }
 
+TEST(ColorConfig, ShippedColorsTxtHoldsTheShippedYamlClasses) {
+  const std::vector<ColorClass> yaml = loadColorClasses(sourcePath("config/colors.yaml"));
+  const std::vector<ColorClass> txt = loadColorClasses(sourcePath("config/colors.txt"));
+  ASSERT_EQ(txt.size(), yaml.size());
+  for (size_t i = 0; i < yaml.size(); ++i) {
+    EXPECT_EQ(txt[i].name, yaml[i].name);
+    EXPECT_EQ(txt[i].space, yaml[i].space);
+    EXPECT_EQ(txt[i].min, yaml[i].min) << yaml[i].name;
+    EXPECT_EQ(txt[i].max, yaml[i].max) << yaml[i].name;
+    EXPECT_EQ(txt[i].display_rgb, yaml[i].display_rgb) << yaml[i].name;
+  }
+}
+
 TEST(ColorConfig, BrokenCmvisionFilesNameTheLine) {
   EXPECT_EQ(errorOf([] { parseCmvisionColors("[Colors]\n(255,0,0) 0.5 2 red\n(0,255,0) 0.5 2 green\n[Thresholds]\n(1:2,3:4,5:6)\n", "c.txt"); }),
             "c.txt:3: colour 'green' has no line in [Thresholds]");
