@@ -66,6 +66,7 @@ class GroundProjectorNodelet : public nodelet::Nodelet {
   double max_range_m_ = 10.0, camera_height_m_ = 0.45, attitude_stddev_rad_ = 0.5 * M_PI / 180;
   AttitudeFilterOptions filter_options_;
   std::shared_ptr<dynamic_reconfigure::Server<GroundProjectorConfig>> reconfigure_server_;
+  std::unique_ptr<GroundProjectorConfig> accepted_config_;  // shown again when a new one is refused
 
   std::shared_ptr<tf2_ros::Buffer> tf_buffer_;
   std::shared_ptr<tf2_ros::TransformListener> tf_listener_;
@@ -183,8 +184,10 @@ void GroundProjectorNodelet::reconfigureCb(GroundProjectorConfig& config, uint32
   std::lock_guard<std::mutex> lock(config_mutex_);
   if (!problem.empty()) {
     NODELET_WARN("refusing ground projector parameters: %s; keeping the previous ones", problem.c_str());
+    if (accepted_config_) config = *accepted_config_;  // rqt_reconfigure shows what is in effect
     return;
   }
+  accepted_config_ = std::make_unique<GroundProjectorConfig>(config);
   max_range_m_ = config.max_range_m;
   camera_height_m_ = config.camera_height_m;
   attitude_stddev_rad_ = config.attitude_stddev_deg * M_PI / 180;

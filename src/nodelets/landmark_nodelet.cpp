@@ -91,6 +91,7 @@ class LandmarkNodelet : public nodelet::Nodelet {
   LearningOptions learning_options_;
   double publish_period_s_ = 0.5;
   std::shared_ptr<dynamic_reconfigure::Server<LandmarkConfig>> reconfigure_server_;
+  std::unique_ptr<LandmarkConfig> accepted_config_;  // shown again when a new one is refused
 
   // Latest camera_info and recent colour images (for pitch, markers, learning, the overlay);
   // an edge image is paired with the colour image of the same stamp.
@@ -184,8 +185,10 @@ void LandmarkNodelet::reconfigureCb(LandmarkConfig& config, uint32_t /*level*/) 
     std::lock_guard<std::mutex> lock(config_mutex_);
     if (!problem.empty()) {
       NODELET_WARN("refusing landmark parameters: %s; keeping the previous ones", problem.c_str());
+      if (accepted_config_) config = *accepted_config_;  // rqt_reconfigure shows what is in effect
       return;
     }
+    accepted_config_ = std::make_unique<LandmarkConfig>(config);
     options_ = candidate;
     learning_options_ = learning;
     learning_ = config.learning;
