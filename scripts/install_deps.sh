@@ -12,7 +12,7 @@ packages=(
   python3-sensor-msgs python3-geometry-msgs python3-std-msgs python3-visualization-msgs
   python3-rospy python3-rostest librostest-dev python3-roslaunch python3-rostopic python3-rosnode
   librosbag-dev python3-rosbag ros-message-generation ros-message-runtime
-  libdiagnostic-updater-dev libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  libdiagnostic-updater-dev python3-diagnostic-msgs libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libbenchmark-dev libgtest-dev
 )
 
