@@ -5,7 +5,7 @@ ARGS ?=
 JOBS ?= 2
 export JOBS
 
-.PHONY: all deps build demo test bench clean
+.PHONY: all deps build demo test bench screenshot clean
 
 all: build
 
@@ -23,6 +23,9 @@ test: build
 
 bench: build
 	@scripts/bench.sh
+
+screenshot: build
+	@scripts/screenshot.sh
 
 clean:
 	rm -rf .ws

@@ -14,6 +14,7 @@ packages=(
   librosbag-dev python3-rosbag ros-message-generation ros-message-runtime
   libdiagnostic-updater-dev python3-diagnostic-msgs libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libbenchmark-dev libgtest-dev
+  rviz xvfb x11-apps
 )
 
 missing=()

@@ -409,7 +409,7 @@ void GroundProjectorNodelet::publishMarkers(const ObstacleArray& obstacles) {
     cylinder.color.r = static_cast<float>(rgb[0] / 255.0);
     cylinder.color.g = static_cast<float>(rgb[1] / 255.0);
     cylinder.color.b = static_cast<float>(rgb[2] / 255.0);
-    cylinder.color.a = 0.8f;
+    cylinder.color.a = o.occluded || o.clipped ? 0.35f : 0.8f;  // faint: the position is only a bound
     array.markers.push_back(cylinder);
 
     visualization_msgs::Marker text = cylinder;
@@ -420,7 +420,9 @@ void GroundProjectorNodelet::publishMarkers(const ObstacleArray& obstacles) {
     text.scale.z = 0.08;
     text.color.r = text.color.g = text.color.b = text.color.a = 1.0f;
     char label[64];
-    std::snprintf(label, sizeof(label), "%u %s %.2f m", o.blob_id, o.color.c_str(), o.range_m);
+    // Hidden or cut-off contact points lie nearer than the projection: the range is a bound.
+    std::snprintf(label, sizeof(label), "%u %s %s%.2f m", o.blob_id, o.color.c_str(),
+                  o.occluded || o.clipped ? "< " : "", o.range_m);
     text.text = label;
     array.markers.push_back(text);
   }
