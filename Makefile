@@ -5,7 +5,7 @@ ARGS ?=
 JOBS ?= 2
 export JOBS
 
-.PHONY: all deps build demo test bench screenshot clean
+.PHONY: all deps build demo test test-asan fuzz bench screenshot clean
 
 all: build
 
@@ -21,6 +21,12 @@ demo: build
 test: build
 	@scripts/run_tests.sh
 
+test-asan: deps
+	@scripts/test_asan.sh
+
+fuzz: deps
+	@scripts/fuzz.sh
+
 bench: build
 	@scripts/bench.sh
 
@@ -28,4 +34,4 @@ screenshot: build
 	@scripts/screenshot.sh
 
 clean:
-	rm -rf .ws
+	rm -rf .ws .ws-asan .ws-fuzz

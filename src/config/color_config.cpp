@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -79,10 +80,12 @@ std::vector<ColorClass> parseCmvisionColors(const std::string& text, const std::
   std::istringstream in(text);
   std::string raw;
   int line_number = 0;
-  auto byte = [&](const std::string& s) {
-    const long v = std::stol(s);
-    if (v > 255) yaml_reader::fail(origin, line_number, "value " + s + " is larger than 255");
-    return static_cast<uint8_t>(v);
+  auto byte = [&](const std::string& s) {  // s is all digits (the regexes say so), maybe very many
+    const size_t first = std::min(s.find_first_not_of('0'), s.size());
+    if (s.size() - first > 3 || (s.size() > first && std::stoi(s.substr(first)) > 255)) {
+      yaml_reader::fail(origin, line_number, "value " + s + " is larger than 255");
+    }
+    return static_cast<uint8_t>(s.size() > first ? std::stoi(s.substr(first)) : 0);
   };
   while (std::getline(in, raw)) {
     ++line_number;

@@ -34,6 +34,8 @@ inline void checkKeys(const std::string& origin, const YAML::Node& map,
                       std::initializer_list<const char*> allowed) {
   if (!map.IsMap()) fail(origin, map, "expected a mapping of key: value");
   for (const auto& entry : map) {
+    // YAML allows lists and maps as keys ("? [a, b]: 1"); no parameter is named like that.
+    if (!entry.first.IsScalar()) fail(origin, entry.first, "a key must be a plain name, not a list or mapping");
     const std::string key = entry.first.as<std::string>();
     bool known = false;
     for (const char* a : allowed) known = known || key == a;

@@ -40,7 +40,7 @@ bool isFullRange(const ColorClass& c, int channel) {
 bool ColorClass::ignoresChroma() const {
   switch (space) {
     case ColorSpace::YUV: return isFullRange(*this, 1) && isFullRange(*this, 2);
-    case ColorSpace::HSV: return isFullRange(*this, 0) && isFullRange(*this, 1);
+    case ColorSpace::HSV: return min[0] == 0 && max[0] >= 179 && isFullRange(*this, 1);  // hue is 0..179
     case ColorSpace::RGB:  // a gray pixel has r = g = b, so equal ranges test brightness only
       return min[0] == min[1] && min[1] == min[2] && max[0] == max[1] && max[1] == max[2];
   }
@@ -63,6 +63,19 @@ std::string validateColorClasses(const std::vector<ColorClass>& classes) {
   for (const ColorClass& c : classes) {
     if (c.name.empty()) return "a colour class has an empty name";
     if (!names.insert(c.name).second) return "colour class name '" + c.name + "' is used twice";
+    static const char* kChannelNames[3][3] = {{"Y", "U", "V"}, {"R", "G", "B"}, {"H", "S", "V"}};
+    for (int ch = 0; ch < 3; ++ch) {
+      const bool hue = c.space == ColorSpace::HSV && ch == 0;
+      const std::string channel = std::string(toString(c.space)) + " " + kChannelNames[static_cast<int>(c.space)][ch];
+      if (c.min[ch] > c.max[ch] && !hue) {
+        return "colour class '" + c.name + "': min " + std::to_string(c.min[ch]) + " > max " +
+               std::to_string(c.max[ch]) + " on " + channel + " (only the HSV hue may wrap around)";
+      }
+      if (hue && (c.min[ch] > 179 || c.max[ch] > 179)) {
+        return "colour class '" + c.name + "': HSV hue bounds must be 0..179 (OpenCV's 8-bit hue), got " +
+               std::to_string(c.min[ch]) + ".." + std::to_string(c.max[ch]);
+      }
+    }
   }
   return "";
 }

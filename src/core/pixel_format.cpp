@@ -32,8 +32,21 @@ const char* encodingOf(PixelFormat format) {
 
 const char* supportedEncodings() { return "bgr8, rgb8, mono8, yuv422 (UYVY), yuv422_yuy2 (YUYV)"; }
 
+std::string checkImageSize(long long width, long long height) {
+  if (width <= 0 || height <= 0) {
+    return "the image is empty (" + std::to_string(width) + "x" + std::to_string(height) + " pixels)";
+  }
+  if (width * height > kMaxImagePixels) {
+    return "the image is " + std::to_string(width) + "x" + std::to_string(height) + " pixels, more than the " +
+           std::to_string(kMaxImagePixels) + " (4096x4096) processed; downscale it first (e.g. image_proc/crop_decimate)";
+  }
+  return "";
+}
+
 std::string checkImage(const cv::Mat& image, PixelFormat format) {
   if (image.empty() || image.cols <= 0 || image.rows <= 0) return "the image is empty (0 pixels)";
+  const std::string size_problem = checkImageSize(image.cols, image.rows);
+  if (!size_problem.empty()) return size_problem;
   if (image.depth() != CV_8U) return "the image depth is not 8-bit unsigned";
   int channels = 3;
   if (format == PixelFormat::MONO8) channels = 1;

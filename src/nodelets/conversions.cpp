@@ -13,10 +13,9 @@ bool viewImage(const sensor_msgs::Image& msg, PixelFormat* format, cv::Mat* mat,
              "); convert it first, e.g. with image_proc for Bayer images";
     return false;
   }
-  if (msg.width == 0 || msg.height == 0) {
-    *error = "empty image (" + std::to_string(msg.width) + "x" + std::to_string(msg.height) + ")";
-    return false;
-  }
+  // Size first: a huge or empty header must not lead to a huge allocation or a wrapped product.
+  *error = checkImageSize(msg.width, msg.height);
+  if (!error->empty()) return false;
   int type = CV_8UC3;
   if (*format == PixelFormat::MONO8) type = CV_8UC1;
   if (*format == PixelFormat::UYVY || *format == PixelFormat::YUYV) type = CV_8UC2;

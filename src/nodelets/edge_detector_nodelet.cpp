@@ -14,7 +14,9 @@
 #include <ros/ros.h>
 
 #include "conversions.h"
+#include "error_throttle.h"
 #include "processing_stats.h"
+#include "startup_params.h"
 #include "rle_vision/EdgeDetectorConfig.h"
 #include "rle_vision/sobel5.h"
 
@@ -36,6 +38,7 @@ class EdgeDetectorNodelet : public nodelet::Nodelet {
   std::shared_ptr<diagnostic_updater::Updater> diagnostics_;
   ros::WallTimer diagnostics_timer_;
   ProcessingStats stats_;
+  ErrorThrottle input_errors_;  // bad input, per kind of problem
   Sobel5 sobel_;  // used only by imageCb, which ROS calls serially
   cv::Mat bgr_;
 };
@@ -44,6 +47,7 @@ void EdgeDetectorNodelet::onInit() {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
   it_ = std::make_shared<image_transport::ImageTransport>(nh);
+  for (const std::string& problem : startupParamProblems<EdgeDetectorConfig>(pnh)) NODELET_WARN("%s", problem.c_str());
   reconfigure_server_ = std::make_shared<dynamic_reconfigure::Server<EdgeDetectorConfig>>(pnh);
   reconfigure_server_->setCallback([this](EdgeDetectorConfig& config, uint32_t) {
     if (!std::isfinite(config.edge_gain) || config.edge_gain <= 0) {
@@ -75,11 +79,14 @@ void EdgeDetectorNodelet::connectCb() {
 
 void EdgeDetectorNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start_ms = threadCpuMs();
   PixelFormat format;
   cv::Mat image;
   std::string error;
   if (!viewImage(*msg, &format, &image, &error)) {
-    NODELET_ERROR_THROTTLE(5.0, "dropping image on %s: %s", sub_image_.getTopic().c_str(), error.c_str());
+    if (input_errors_.shouldLog(error)) {
+      NODELET_ERROR("dropping image on %s: %s", sub_image_.getTopic().c_str(), error.c_str());
+    }
     return;
   }
   // The Sobel works on any channel order (it keeps the largest channel magnitude); 4:2:2
@@ -105,7 +112,8 @@ void EdgeDetectorNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
   cv::Mat edges(static_cast<int>(out->height), static_cast<int>(out->width), CV_8UC1, out->data.data(), out->step);
   sobel_.edges(*input, gain, &edges);
   pub_edges_.publish(out);
-  stats_.addFrame(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  stats_.addFrame(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
+                  threadCpuMs() - cpu_start_ms);
 }
 
 }  // namespace rle_vision

@@ -31,6 +31,7 @@
 
 #include "conversions.h"
 #include "processing_stats.h"
+#include "startup_params.h"
 #include "rle_vision/BlobArray.h"
 #include "rle_vision/GroundProjectorConfig.h"
 #include "rle_vision/Horizon.h"
@@ -121,6 +122,7 @@ void GroundProjectorNodelet::onInit() {
     NODELET_WARN("cannot read display colours (markers will be grey): %s", e.what());
   }
 
+  for (const std::string& problem : startupParamProblems<GroundProjectorConfig>(pnh)) NODELET_WARN("%s", problem.c_str());
   reconfigure_server_ = std::make_shared<dynamic_reconfigure::Server<GroundProjectorConfig>>(pnh);
   reconfigure_server_->setCallback(
       [this](GroundProjectorConfig& config, uint32_t level) { reconfigureCb(config, level); });
@@ -310,6 +312,7 @@ void GroundProjectorNodelet::blobsDroppedCb(const BlobArrayConstPtr& msg,
 
 void GroundProjectorNodelet::blobsCb(const BlobArrayConstPtr& msg) {
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start_ms = threadCpuMs();
   sensor_msgs::CameraInfoConstPtr info;
   {
     std::lock_guard<std::mutex> lock(info_mutex_);
@@ -381,7 +384,8 @@ void GroundProjectorNodelet::blobsCb(const BlobArrayConstPtr& msg) {
   }
   pub_obstacles_.publish(out);
   if (pub_markers_.getNumSubscribers() > 0) publishMarkers(*out);
-  stats_.addFrame(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  stats_.addFrame(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
+                  threadCpuMs() - cpu_start_ms);
 }
 
 void GroundProjectorNodelet::publishMarkers(const ObstacleArray& obstacles) {

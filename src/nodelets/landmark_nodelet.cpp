@@ -15,7 +15,6 @@
 #include <chrono>
 #include <deque>
 #include <cmath>
-#include <condition_variable>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -33,7 +32,9 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "conversions.h"
+#include "error_throttle.h"
 #include "processing_stats.h"
+#include "startup_params.h"
 #include "rle_vision/ColorRangeArray.h"
 #include "rle_vision/Horizon.h"
 #include "rle_vision/LandmarkConfig.h"
@@ -41,6 +42,7 @@
 #include "rle_vision/color_table.h"
 #include "rle_vision/config_files.h"
 #include "rle_vision/landmark_detector.h"
+#include "rle_vision/latest_mailbox.h"
 #include "rle_vision/overlay.h"
 
 namespace rle_vision {
@@ -100,16 +102,14 @@ class LandmarkNodelet : public nodelet::Nodelet {
   std::deque<sensor_msgs::ImageConstPtr> colours_;
 
   // The one-slot mailbox and its worker.
-  std::mutex mailbox_mutex_;
-  std::condition_variable mailbox_cv_;
-  sensor_msgs::ImageConstPtr mailbox_;
-  bool stop_ = false;
+  LatestMailbox<sensor_msgs::ImageConstPtr> mailbox_;
   std::thread worker_;
   std::atomic<bool> warned_no_camera_info_{false};
 
   std::shared_ptr<diagnostic_updater::Updater> diagnostics_;
   ros::WallTimer diagnostics_timer_;
   ProcessingStats stats_;
+  ErrorThrottle input_errors_;  // bad input, per kind of problem
   // For diagnostics (written by the worker): when color_ranges went out last (wall s, 0: never).
   std::atomic<double> ranges_published_s_{0};
   std::atomic<int> learned_classes_{0};
@@ -125,11 +125,7 @@ class LandmarkNodelet : public nodelet::Nodelet {
 };
 
 LandmarkNodelet::~LandmarkNodelet() {
-  {
-    std::lock_guard<std::mutex> lock(mailbox_mutex_);
-    stop_ = true;
-  }
-  mailbox_cv_.notify_all();
+  mailbox_.close();
   if (worker_.joinable()) worker_.join();
 }
 
@@ -147,6 +143,7 @@ void LandmarkNodelet::onInit() {
     throw;
   }
   learner_ = std::make_unique<ColorLearner>(configured_classes_, LearningOptions());
+  for (const std::string& problem : startupParamProblems<LandmarkConfig>(pnh)) NODELET_WARN("%s", problem.c_str());
   reconfigure_server_ = std::make_shared<dynamic_reconfigure::Server<LandmarkConfig>>(pnh);
   reconfigure_server_->setCallback([this](LandmarkConfig& config, uint32_t level) { reconfigureCb(config, level); });
 
@@ -234,12 +231,7 @@ void LandmarkNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
 }
 
 void LandmarkNodelet::edgesCb(const sensor_msgs::ImageConstPtr& msg) {
-  {
-    std::lock_guard<std::mutex> lock(mailbox_mutex_);
-    if (mailbox_) stats_.addDrop();  // the worker did not get to the previous frame
-    mailbox_ = msg;
-  }
-  mailbox_cv_.notify_one();
+  if (mailbox_.put(msg)) stats_.addDrop();  // the worker did not get to the previous frame
 }
 
 void LandmarkNodelet::workerLoop() {
@@ -251,14 +243,8 @@ void LandmarkNodelet::workerLoop() {
     NODELET_INFO("landmark worker runs at low priority (nice 19: %s, SCHED_IDLE: %s)", niced ? "yes" : "no",
                  idled ? "yes" : "no");
   }
-  while (true) {
-    sensor_msgs::ImageConstPtr msg;
-    {
-      std::unique_lock<std::mutex> lock(mailbox_mutex_);
-      mailbox_cv_.wait(lock, [this] { return stop_ || mailbox_; });
-      if (stop_) return;
-      msg.swap(mailbox_);
-    }
+  sensor_msgs::ImageConstPtr msg;
+  while (mailbox_.take(&msg)) {
     try {
       process(msg);
     } catch (const std::exception& e) {
@@ -269,12 +255,17 @@ void LandmarkNodelet::workerLoop() {
 
 void LandmarkNodelet::process(const sensor_msgs::ImageConstPtr& msg) {
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start_ms = threadCpuMs();
   PixelFormat format;
   cv::Mat edges;
   std::string error;
-  if (!viewImage(*msg, &format, &edges, &error) || format != PixelFormat::MONO8) {
-    NODELET_ERROR_THROTTLE(5.0, "dropping edge image on %s: %s", sub_edges_.getTopic().c_str(),
-                           error.empty() ? ("needs mono8, got " + msg->encoding).c_str() : error.c_str());
+  if (viewImage(*msg, &format, &edges, &error) && format != PixelFormat::MONO8) {
+    error = "edge images must be mono8 (the EdgeDetector's output), got " + msg->encoding;
+  }
+  if (!error.empty()) {
+    if (input_errors_.shouldLog(error)) {
+      NODELET_ERROR("dropping edge image on %s: %s", sub_edges_.getTopic().c_str(), error.c_str());
+    }
     return;
   }
   LandmarkOptions options;
@@ -365,7 +356,8 @@ void LandmarkNodelet::process(const sensor_msgs::ImageConstPtr& msg) {
     }
     pub_debug_.publish(debugImageMsg(msg->header, canvas));
   }
-  stats_.addFrame(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  stats_.addFrame(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
+                  threadCpuMs() - cpu_start_ms);
 }
 
 void LandmarkNodelet::learn(const std_msgs::Header& header, const cv::Mat& bgr, const LandmarkResult& result,

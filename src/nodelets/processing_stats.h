@@ -1,6 +1,9 @@
 // Per-nodelet processing statistics for diagnostics: input rate, time per frame (mean and
-// max), frames dropped. Thread-safe; each report covers the time since the previous one.
+// max), frames dropped, CPU used. Thread-safe; each report covers the time since the previous
+// one, except the totals.
 #pragma once
+
+#include <time.h>
 
 #include <algorithm>
 #include <mutex>
@@ -10,13 +13,25 @@
 
 namespace rle_vision {
 
+// CPU time of the calling thread (ms): what one callback really costs, whatever else the
+// nodelet manager's process runs.
+inline double threadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
 class ProcessingStats {
  public:
-  void addFrame(double processing_ms) {
+  ProcessingStats() : started_(ros::WallTime::now()) {}
+
+  // `cpu_ms`: thread CPU time the frame took (threadCpuMs() after minus before).
+  void addFrame(double processing_ms, double cpu_ms = 0.0) {
     std::lock_guard<std::mutex> lock(mutex_);
     ++frames_;
     sum_ms_ += processing_ms;
     max_ms_ = std::max(max_ms_, processing_ms);
+    cpu_ms_total_ += cpu_ms;
   }
   void addDrop() {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -36,6 +51,8 @@ class ProcessingStats {
     status.add("processing time max (ms)", max_ms_);
     status.add("frames dropped (since last report)", dropped_);
     status.add("frames dropped (total)", dropped_total_);
+    const double running_s = (now - started_).toSec();
+    status.add("cpu load since start (% of one core)", running_s > 0 ? 100.0 * cpu_ms_total_ / 1e3 / running_s : 0.0);
     if (dropped_ > 0) {
       status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN, "%d frames dropped (processing slower than input)", dropped_);
     } else if (mean_ms > warn_ms) {
@@ -53,7 +70,9 @@ class ProcessingStats {
   std::mutex mutex_;
   int frames_ = 0, dropped_ = 0, dropped_total_ = 0;
   double sum_ms_ = 0, max_ms_ = 0;
+  double cpu_ms_total_ = 0;
   ros::WallTime last_report_;
+  const ros::WallTime started_;
 };
 
 }  // namespace rle_vision

@@ -211,6 +211,7 @@ void SimulatorNodelet::timerCb(const ros::TimerEvent&) {
     return;
   }
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start_ms = threadCpuMs();
   const SimFrame frame = simulator_->render(frame_index_, frame_index_ / rate_hz_);
   ++frame_index_;
   std_msgs::Header header;
@@ -237,7 +238,8 @@ void SimulatorNodelet::timerCb(const ros::TimerEvent&) {
     pub_labels_.publish(cv_bridge::CvImage(header, "mono8", frame.labels).toImageMsg());
   }
   pub_camera_.publish(image, boost::make_shared<sensor_msgs::CameraInfo>(cameraInfo(header)));
-  stats_.addFrame(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  stats_.addFrame(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
+                  threadCpuMs() - cpu_start_ms);
 }
 
 }  // namespace rle_vision

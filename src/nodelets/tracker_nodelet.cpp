@@ -18,12 +18,15 @@
 #include <ros/ros.h>
 
 #include "conversions.h"
+#include "error_throttle.h"
 #include "processing_stats.h"
+#include "startup_params.h"
 #include "rle_vision/BlobArray.h"
 #include "rle_vision/CmvisionBlobs.h"
 #include "rle_vision/ColorRangeArray.h"
 #include "rle_vision/TrackerConfig.h"
 #include "rle_vision/config_files.h"
+#include "rle_vision/latency_histogram.h"
 #include "rle_vision/overlay.h"
 #include "rle_vision/segmenter.h"
 #include "rle_vision/shared_color_table.h"
@@ -67,6 +70,10 @@ class TrackerNodelet : public nodelet::Nodelet {
   std::shared_ptr<diagnostic_updater::Updater> diagnostics_;
   ros::WallTimer diagnostics_timer_;
   ProcessingStats stats_;
+  ErrorThrottle input_errors_;  // bad input, per kind of problem
+  // Image stamp to blobs publish, since start (wall-clock time only; meaningless under sim time).
+  std::mutex latency_mutex_;
+  LatencyHistogram latency_;
 
   // Used only by imageCb, which ROS calls serially.
   Segmenter segmenter_;
@@ -95,6 +102,7 @@ void TrackerNodelet::onInit() {
   NODELET_INFO("loaded %d colour classes from %s", table_.load()->size(), colors_file.c_str());
   table_since_ = ros::WallTime::now();
 
+  for (const std::string& problem : startupParamProblems<TrackerConfig>(pnh)) NODELET_WARN("%s", problem.c_str());
   reconfigure_server_ = std::make_shared<dynamic_reconfigure::Server<TrackerConfig>>(pnh);
   reconfigure_server_->setCallback([this](TrackerConfig& config, uint32_t level) { reconfigureCb(config, level); });
   diagnostics_ = std::make_shared<diagnostic_updater::Updater>(nh, pnh, getName());
@@ -155,8 +163,9 @@ void TrackerNodelet::colorRangesCb(const ColorRangeArrayConstPtr& msg) {
   std::vector<ColorClass> classes;
   std::string error;
   if (!colorClassesFromMsg(*msg, &classes, &error)) {
-    NODELET_ERROR_THROTTLE(5.0, "ignoring color_ranges: %s; keeping the current %d classes", error.c_str(),
-                           table_.load()->size());
+    if (input_errors_.shouldLog(error)) {
+      NODELET_ERROR("ignoring color_ranges: %s; keeping the current %d classes", error.c_str(), table_.load()->size());
+    }
     return;
   }
   // Built here, off the frame path; imageCb picks it up with its next snapshot.
@@ -184,11 +193,14 @@ void TrackerNodelet::publishActiveRanges(const ColorTable& table, const ros::Tim
 
 void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start_ms = threadCpuMs();
   PixelFormat format;
   cv::Mat image;
   std::string error;
   if (!viewImage(*msg, &format, &image, &error)) {
-    NODELET_ERROR_THROTTLE(5.0, "dropping image on %s: %s", sub_image_.getTopic().c_str(), error.c_str());
+    if (input_errors_.shouldLog(error)) {
+      NODELET_ERROR("dropping image on %s: %s", sub_image_.getTopic().c_str(), error.c_str());
+    }
     return;
   }
   const std::shared_ptr<const ColorTable> table = table_.load();
@@ -219,10 +231,15 @@ void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
   out->processing_time_ms = static_cast<float>(
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   pub_blobs_.publish(out);
+  const double latency_ms = (ros::Time::now() - msg->header.stamp).toSec() * 1e3;
+  if (ros::Time::useSystemTime() && latency_ms > -1e3 && latency_ms < 1e4) {  // a live camera's stamp
+    std::lock_guard<std::mutex> lock(latency_mutex_);
+    latency_.add(latency_ms);
+  }
   if (pub_cmvision_blobs_.getNumSubscribers() > 0) {
     pub_cmvision_blobs_.publish(cmvisionBlobsMsg(*out, *table));
   }
-  stats_.addFrame(out->processing_time_ms);
+  stats_.addFrame(out->processing_time_ms, threadCpuMs() - cpu_start_ms);
 
   if (pub_debug_.getNumSubscribers() > 0) {
     cv::Mat canvas = toDisplayBgr(image, format);
@@ -234,6 +251,13 @@ void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
 
 void TrackerNodelet::reportDiagnostics(diagnostic_updater::DiagnosticStatusWrapper& status) {
   stats_.report(status, 0.5);
+  {
+    std::lock_guard<std::mutex> lock(latency_mutex_);
+    status.add("latency frames (since start)", latency_.count());
+    status.add("latency image stamp to blobs p50 (ms)", latency_.percentileMs(50));
+    status.add("latency image stamp to blobs p99 (ms)", latency_.percentileMs(99));
+    status.add("latency image stamp to blobs max (ms)", latency_.maxMs());
+  }
   std::lock_guard<std::mutex> lock(table_info_mutex_);
   status.add("colour classes", table_.load()->size());
   status.add("colour ranges from", table_source_);

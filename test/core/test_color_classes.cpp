@@ -65,7 +65,17 @@ TEST(ColorClass, ValidationNamesTheProblem) {
   EXPECT_THROW(ColorTable({}), std::invalid_argument);
 }
 
-// Random classes of every space (some wrapped) and random pixels: the bit tables, the class
+TEST(ColorClasses, OnlyTheHsvHueMayWrap) {
+  EXPECT_EQ(validateColorClasses({makeClass("red", ColorSpace::HSV, {{170, 100, 50}}, {{10, 255, 255}})}), "");
+  EXPECT_EQ(validateColorClasses({makeClass("y", ColorSpace::YUV, {{200, 0, 0}}, {{40, 255, 255}})}),
+            "colour class 'y': min 200 > max 40 on YUV Y (only the HSV hue may wrap around)");
+  EXPECT_EQ(validateColorClasses({makeClass("s", ColorSpace::HSV, {{0, 200, 0}}, {{179, 100, 255}})}),
+            "colour class 's': min 200 > max 100 on HSV S (only the HSV hue may wrap around)");
+  EXPECT_EQ(validateColorClasses({makeClass("h", ColorSpace::HSV, {{0, 0, 0}}, {{200, 255, 255}})}),
+            "colour class 'h': HSV hue bounds must be 0..179 (OpenCV's 8-bit hue), got 0..200");
+}
+
+// Random classes of every space (some hues wrapped) and random pixels: the bit tables, the class
 // boxes and the vectorised row classifier must give the same label everywhere.
 TEST(PixelClassifier, AgreesWithBitTablesOnRandomImagesInEveryFormat) {
   std::mt19937 rng(42);
@@ -78,7 +88,12 @@ TEST(PixelClassifier, AgreesWithBitTablesOnRandomImagesInEveryFormat) {
       for (int ch = 0; ch < 3; ++ch) {
         lo[ch] = static_cast<uint8_t>(byte(rng));
         hi[ch] = static_cast<uint8_t>(byte(rng));
-        if (k % 3 != 0 && lo[ch] > hi[ch]) std::swap(lo[ch], hi[ch]);  // every third may wrap
+        const bool hue = k % 3 == 2 && ch == 0;
+        if (hue) {  // OpenCV's hue is 0..179; some hue ranges wrap around
+          lo[ch] = static_cast<uint8_t>(lo[ch] % 180);
+          hi[ch] = static_cast<uint8_t>(hi[ch] % 180);
+        }
+        if (!(hue && k % 2 == 0) && lo[ch] > hi[ch]) std::swap(lo[ch], hi[ch]);
       }
       classes.push_back(makeClass("c" + std::to_string(k), static_cast<ColorSpace>(k % 3), lo, hi));
     }
@@ -124,7 +139,7 @@ TEST(PixelClassifier, YuvOnlyTablesAgreeWithBitTablesOnAllColours) {
       for (int ch = 0; ch < 3; ++ch) {
         lo[ch] = static_cast<uint8_t>(byte(rng));
         hi[ch] = static_cast<uint8_t>(byte(rng));
-        if (k % 4 != 0 && lo[ch] > hi[ch]) std::swap(lo[ch], hi[ch]);  // some wrap
+        if (lo[ch] > hi[ch]) std::swap(lo[ch], hi[ch]);
       }
       classes.push_back(makeClass("c" + std::to_string(k), ColorSpace::YUV, lo, hi));
     }
@@ -171,7 +186,7 @@ TEST(PixelClassifier, FirstListedClassWinsWhereClassesOverlap) {
 TEST(PixelClassifier, Yuv422UsesTheCamerasOwnYuv) {
   const ColorTable table({makeClass("a", ColorSpace::YUV, {{0, 100, 100}}, {{255, 140, 140}}),
                           makeClass("b", ColorSpace::YUV, {{50, 0, 150}}, {{200, 120, 255}}),
-                          makeClass("w", ColorSpace::YUV, {{200, 250, 0}}, {{40, 10, 255}})});  // wrapped
+                          makeClass("w", ColorSpace::YUV, {{40, 10, 0}}, {{200, 250, 255}})});
   PixelClassifier classifier;
   for (int width : {64, 70, 2, 640}) {  // vector body only, with a scalar tail, tail only
     cv::Mat uyvy(5, width, CV_8UC2);
@@ -203,7 +218,7 @@ TEST(PixelClassifier, Yuv422UsesTheCamerasOwnYuv) {
 TEST(PixelClassifier, MonoOnlyUsesClassesThatIgnoreChroma) {
   const ColorTable table({makeClass("orange", ColorSpace::YUV, {{0, 0, 150}}, {{255, 110, 255}}),
                           makeClass("white", ColorSpace::YUV, {{200, 0, 0}}, {{255, 255, 255}}),
-                          makeClass("dark", ColorSpace::HSV, {{0, 0, 0}}, {{255, 255, 40}})});
+                          makeClass("dark", ColorSpace::HSV, {{0, 0, 0}}, {{179, 255, 40}})});
   EXPECT_EQ(table.chromaClasses(), 1u);
   cv::Mat mono(1, 256, CV_8UC1);
   for (int i = 0; i < 256; ++i) mono.at<uint8_t>(0, i) = static_cast<uint8_t>(i);
@@ -224,6 +239,18 @@ TEST(PixelClassifier, RejectsImagesThatDoNotFitTheFormat) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("empty"), std::string::npos);
   }
+  try {
+    // 4097 x 4096 mono8 (16 MB, one row over the limit); a header-only view is enough.
+    static uint8_t pixel = 0;
+    classifier.classify(cv::Mat(4096, 4097, CV_8UC1, &pixel, 0), PixelFormat::MONO8, table);
+    FAIL() << "an image over kMaxImagePixels accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("4097x4096 pixels, more than the 16777216"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(checkImageSize(4096, 4096), "");
+  EXPECT_EQ(checkImageSize(8192, 2048), "");  // the limit is on pixels, not on either side
+  EXPECT_NE(checkImageSize(8000, 8000), "");
+  EXPECT_NE(checkImageSize(0, 480).find("empty (0x480"), std::string::npos);
   try {
     classifier.classify(cv::Mat(4, 4, CV_8UC1), PixelFormat::BGR8, table);
     FAIL() << "mono image accepted as bgr8";

@@ -76,6 +76,10 @@ TEST(ColorConfig, BrokenYamlNamesFileLineAndReason) {
   EXPECT_NE(errorOf([&] { parseColorClassesYaml(head + "    min: [0, 0, 0]\n    max: [1, 1, 1]\n    min_area_px: .nan\n", "c.yaml"); })
                 .find("c.yaml:5: 'min_area_px'"),
             std::string::npos);
+  // Found by fuzz_color_config: a list or mapping as a key ("? [a]") once escaped as a yaml-cpp
+  // conversion error instead of a ConfigError naming the line.
+  EXPECT_EQ(errorOf([&] { parseColorClassesYaml(head + "    ? [min]\n    : [0, 0, 0]\n", "c.yaml"); }),
+            "c.yaml:3: a key must be a plain name, not a list or mapping");
   EXPECT_EQ(errorOf([] { loadColorClasses("/nonexistent/colors.yaml"); }),
             "/nonexistent/colors.yaml: cannot open the file (check the path and permissions)");
 }
@@ -109,6 +113,11 @@ TEST(ColorConfig, ShippedColorsTxtHoldsTheShippedYamlClasses) {
 }
 
 TEST(ColorConfig, BrokenCmvisionFilesNameTheLine) {
+  // Found by fuzz_color_config: a number too long for a long made std::stol throw out_of_range.
+  EXPECT_EQ(errorOf([] { parseCmvisionColors("[Colors]\n(255,0,99999999999999999999999) 0.5 2 red\n", "c.txt"); }),
+            "c.txt:2: value 99999999999999999999999 is larger than 255");
+  EXPECT_EQ(parseCmvisionColors("[Colors]\n(0255,000,0) 0.5 2 red\n[Thresholds]\n(0:0,00:10,1:2)\n", "c.txt")[0].display_rgb,
+            (Channels{{255, 0, 0}}));
   EXPECT_EQ(errorOf([] { parseCmvisionColors("[Colors]\n(255,0,0) 0.5 2 red\n(0,255,0) 0.5 2 green\n[Thresholds]\n(1:2,3:4,5:6)\n", "c.txt"); }),
             "c.txt:3: colour 'green' has no line in [Thresholds]");
   EXPECT_EQ(errorOf([] { parseCmvisionColors("[Colors]\n(255,0,0) 0.5 2 red\n[Thresholds]\n(1:2,3:4)\n", "c.txt"); }),
@@ -134,6 +143,9 @@ TEST(SceneConfig, ShippedSceneLoadsAndBrokenOnesFail) {
             std::string::npos);
   EXPECT_NE(errorOf([] { parseSceneConfig("camera: {hfov_deg: .nan}\n", "s.yaml"); }).find("s.yaml:1: 'hfov_deg'"),
             std::string::npos);
+  // Found by fuzz_params: a flow mapping with a list as a key.
+  EXPECT_EQ(errorOf([] { parseSceneConfig("lighting: {gain_start: 1.0, [1, 1, 1]}\n", "s.yaml"); }),
+            "s.yaml:1: a key must be a plain name, not a list or mapping");
   EXPECT_NE(errorOf([] { parseSceneConfig("boxes: 3\n", "s.yaml"); }).find("'boxes' must be a list"),
             std::string::npos);
 }

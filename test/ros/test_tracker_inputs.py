@@ -131,10 +131,14 @@ class TrackerInputsTest(unittest.TestCase):
         # Then a good frame: the node is alive and right.
         self.send(make_image('bgr8'), 300.0)
         self.assert_red_square(self.wait_for_blobs(300.0))
-        errors = self.logs_matching(Log.ERROR, 'dropping image')
-        self.assertEqual(len(errors), 1, [m.msg for m in errors])
-        self.assertIn("unsupported image encoding 'bayer_rggb8'", errors[0].msg)
-        self.assertIn('supported: bgr8', errors[0].msg)
+        # One error per kind of problem (the five Bayer frames log once), each saying what is wrong.
+        errors = [m.msg for m in self.logs_matching(Log.ERROR, 'dropping image')]
+        self.assertEqual(len(errors), 4, errors)
+        self.assertIn("unsupported image encoding 'bayer_rggb8'", errors[0])
+        self.assertIn('supported: bgr8', errors[0])
+        self.assertIn("unsupported image encoding '16UC1'", errors[1])
+        self.assertIn('the image is empty (0x0 pixels)', errors[2])
+        self.assertIn('image data has 100 bytes, step x height needs 9216', errors[3])
         with self.lock:
             self.assertFalse(any(abs(m.header.stamp.to_sec() - 200.0) < 1e-6 for m in self.blobs))
 
