@@ -5,7 +5,7 @@ ARGS ?=
 JOBS ?= 2
 export JOBS
 
-.PHONY: all deps build demo test test-asan fuzz bench screenshot clean
+.PHONY: all deps build demo test test-asan fuzz bench bench-latency screenshot clean
 
 all: build
 
@@ -29,6 +29,9 @@ fuzz: deps
 
 bench: build
 	@scripts/bench.sh
+
+bench-latency: build
+	@scripts/bench_latency.sh
 
 screenshot: build
 	@scripts/screenshot.sh

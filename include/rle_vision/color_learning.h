@@ -64,6 +64,11 @@ class ColorLearner {
   // Returns true when the classes changed (classes() then holds the set to publish).
   bool update(const cv::Mat& bgr, const LandmarkResult& landmarks, const EdgeObjectFinder& objects, double stamp_s);
 
+  // Continues from ranges learned earlier (a restarted node resuming from what the tracker still
+  // uses): each configured class with a "learned" class of the same name and space in `learned`
+  // takes that range as its current one. Returns how many classes resumed.
+  int resume(const std::vector<ColorClass>& learned, double stamp_s);
+
   // The current classes: configured ones with their learned ranges (source "learned" once
   // measured), then any created classes.
   const std::vector<ColorClass>& classes() const { return classes_; }

@@ -157,6 +157,24 @@ ColorLearner::ColorLearner(std::vector<ColorClass> configured, const LearningOpt
   }
 }
 
+int ColorLearner::resume(const std::vector<ColorClass>& learned, double stamp_s) {
+  int resumed = 0;
+  for (size_t k = 0; k < configured_.size(); ++k) {
+    for (const ColorClass& c : learned) {
+      if (c.name != configured_[k].name || c.space != configured_[k].space || c.source != "learned") continue;
+      for (int ch = 0; ch < 3; ++ch) {
+        state_[k].lo[ch] = classes_[k].min[ch] = c.min[ch];
+        state_[k].hi[ch] = classes_[k].max[ch] = c.max[ch];
+      }
+      classes_[k].source = "learned";
+      state_[k].last_measured_s = stamp_s;
+      ++resumed;
+      break;
+    }
+  }
+  return resumed;
+}
+
 const ColorStats* ColorLearner::groundStats(ColorSpace space) const {
   return have_ground_[static_cast<int>(space)] ? &ground_[static_cast<int>(space)] : nullptr;
 }

@@ -1,6 +1,8 @@
 // rle_vision/EdgeDetector: the paper's 5x5 RGB Sobel: image_raw -> edges (mono8, the largest
 // channel gradient magnitude), stamped with the input header. Works only while `edges` has
-// subscribers.
+// subscribers, on its own low-priority thread with a one-slot mailbox like the Landmark node:
+// edges feed only the low-priority landmark path, so they must not take a core from the
+// tracker when both get the same image.
 #include <chrono>
 #include <memory>
 #include <mutex>
@@ -15,6 +17,7 @@
 
 #include "conversions.h"
 #include "error_throttle.h"
+#include "low_priority_worker.h"
 #include "processing_stats.h"
 #include "startup_params.h"
 #include "rle_vision/EdgeDetectorConfig.h"
@@ -23,10 +26,14 @@
 namespace rle_vision {
 
 class EdgeDetectorNodelet : public nodelet::Nodelet {
+ public:
+  ~EdgeDetectorNodelet() override { worker_.stop(); }
+
  private:
   void onInit() override;
   void connectCb();
   void imageCb(const sensor_msgs::ImageConstPtr& msg);
+  void process(const sensor_msgs::ImageConstPtr& msg);
 
   std::shared_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber sub_image_;
@@ -39,14 +46,18 @@ class EdgeDetectorNodelet : public nodelet::Nodelet {
   ros::WallTimer diagnostics_timer_;
   ProcessingStats stats_;
   ErrorThrottle input_errors_;  // bad input, per kind of problem
-  Sobel5 sobel_;  // used only by imageCb, which ROS calls serially
+  // Used only by the worker thread.
+  Sobel5 sobel_;
   cv::Mat bgr_;
+  LowPriorityWorker worker_;
 };
 
 void EdgeDetectorNodelet::onInit() {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
   it_ = std::make_shared<image_transport::ImageTransport>(nh);
+  bool low_priority = true;
+  pnh.param("low_priority", low_priority, true);
   for (const std::string& problem : startupParamProblems<EdgeDetectorConfig>(pnh)) NODELET_WARN("%s", problem.c_str());
   reconfigure_server_ = std::make_shared<dynamic_reconfigure::Server<EdgeDetectorConfig>>(pnh);
   reconfigure_server_->setCallback([this](EdgeDetectorConfig& config, uint32_t) {
@@ -61,6 +72,14 @@ void EdgeDetectorNodelet::onInit() {
   diagnostics_->setHardwareID("none");
   diagnostics_->add("edge detector", [this](diagnostic_updater::DiagnosticStatusWrapper& s) { stats_.report(s, 5.0); });
   diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
+  worker_.start(
+      low_priority, [this](const sensor_msgs::ImageConstPtr& msg) { process(msg); },
+      [this, low_priority](bool niced, bool idled) {
+        if (low_priority) {
+          NODELET_INFO("edge worker runs at low priority (nice 19: %s, SCHED_IDLE: %s)", niced ? "yes" : "no",
+                       idled ? "yes" : "no");
+        }
+      });
 
   std::lock_guard<std::mutex> lock(connect_mutex_);
   const image_transport::SubscriberStatusCallback connect_cb =
@@ -78,6 +97,10 @@ void EdgeDetectorNodelet::connectCb() {
 }
 
 void EdgeDetectorNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
+  if (worker_.put(msg)) stats_.addDrop();  // the worker did not get to the previous frame
+}
+
+void EdgeDetectorNodelet::process(const sensor_msgs::ImageConstPtr& msg) {
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start_ms = threadCpuMs();
   PixelFormat format;
@@ -85,7 +108,7 @@ void EdgeDetectorNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
   std::string error;
   if (!viewImage(*msg, &format, &image, &error)) {
     if (input_errors_.shouldLog(error)) {
-      NODELET_ERROR("dropping image on %s: %s", sub_image_.getTopic().c_str(), error.c_str());
+      NODELET_ERROR("dropping image on %s: %s", getNodeHandle().resolveName("image_raw").c_str(), error.c_str());
     }
     return;
   }

@@ -4,12 +4,6 @@
 // and a debug overlay, and (learning on) measures the colours of the objects the lines bound
 // and publishes updated colour ranges for the tracker. It never queues frames and never holds
 // up the manager's other nodelets (the tracker).
-#include <pthread.h>
-#include <sched.h>
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -18,7 +12,6 @@
 #include <limits>
 #include <memory>
 #include <mutex>
-#include <thread>
 
 #include <cv_bridge/cv_bridge.h>
 #include <diagnostic_updater/diagnostic_updater.h>
@@ -33,6 +26,7 @@
 
 #include "conversions.h"
 #include "error_throttle.h"
+#include "low_priority_worker.h"
 #include "processing_stats.h"
 #include "startup_params.h"
 #include "rle_vision/ColorRangeArray.h"
@@ -42,7 +36,6 @@
 #include "rle_vision/color_table.h"
 #include "rle_vision/config_files.h"
 #include "rle_vision/landmark_detector.h"
-#include "rle_vision/latest_mailbox.h"
 #include "rle_vision/overlay.h"
 
 namespace rle_vision {
@@ -72,7 +65,6 @@ class LandmarkNodelet : public nodelet::Nodelet {
   void imageCb(const sensor_msgs::ImageConstPtr& msg);
   void cameraInfoCb(const sensor_msgs::CameraInfoConstPtr& msg);
   void reconfigureCb(LandmarkConfig& config, uint32_t level);
-  void workerLoop();
   void process(const sensor_msgs::ImageConstPtr& edges_msg);
   void publishMarkers(const std_msgs::Header& header, const LandmarkResult& result, const PinholeCamera& camera);
   void learn(const std_msgs::Header& header, const cv::Mat& bgr, const LandmarkResult& result, bool learning,
@@ -82,6 +74,7 @@ class LandmarkNodelet : public nodelet::Nodelet {
   std::shared_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber sub_edges_, sub_image_;
   ros::Subscriber sub_info_;
+  ros::Subscriber sub_resume_;
   ros::Publisher pub_lines_, pub_horizon_, pub_markers_, pub_ranges_;
   image_transport::Publisher pub_debug_;
   std::mutex connect_mutex_;
@@ -98,12 +91,14 @@ class LandmarkNodelet : public nodelet::Nodelet {
   // Latest camera_info and recent colour images (for pitch, markers, learning, the overlay);
   // an edge image is paired with the colour image of the same stamp.
   std::mutex inputs_mutex_;
+  // Learned ranges to resume from (the tracker's active ones at start-up), for the worker.
+  std::unique_ptr<std::vector<ColorClass>> pending_resume_;
+  std::atomic<bool> resume_taken_{false};
   sensor_msgs::CameraInfoConstPtr camera_info_;
   std::deque<sensor_msgs::ImageConstPtr> colours_;
 
   // The one-slot mailbox and its worker.
-  LatestMailbox<sensor_msgs::ImageConstPtr> mailbox_;
-  std::thread worker_;
+  LowPriorityWorker worker_;
   std::atomic<bool> warned_no_camera_info_{false};
 
   std::shared_ptr<diagnostic_updater::Updater> diagnostics_;
@@ -125,8 +120,7 @@ class LandmarkNodelet : public nodelet::Nodelet {
 };
 
 LandmarkNodelet::~LandmarkNodelet() {
-  mailbox_.close();
-  if (worker_.joinable()) worker_.join();
+  worker_.stop();
 }
 
 void LandmarkNodelet::onInit() {
@@ -158,7 +152,21 @@ void LandmarkNodelet::onInit() {
   });
   diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
 
-  worker_ = std::thread(&LandmarkNodelet::workerLoop, this);
+  worker_.start(
+      low_priority_,
+      [this](const sensor_msgs::ImageConstPtr& msg) {
+        try {
+          process(msg);
+        } catch (const std::exception& e) {
+          NODELET_ERROR_THROTTLE(5.0, "landmark processing failed: %s", e.what());
+        }
+      },
+      [this](bool niced, bool idled) {
+        if (low_priority_) {
+          NODELET_INFO("landmark worker runs at low priority (nice 19: %s, SCHED_IDLE: %s)", niced ? "yes" : "no",
+                       idled ? "yes" : "no");
+        }
+      });
 
   std::lock_guard<std::mutex> lock(connect_mutex_);
   const ros::SubscriberStatusCallback connect_cb = [this](const ros::SingleSubscriberPublisher&) { connectCb(); };
@@ -170,6 +178,21 @@ void LandmarkNodelet::onInit() {
   pub_debug_ = image_transport::ImageTransport(pnh).advertise("debug_image", 1, image_connect_cb, image_connect_cb);
   pub_ranges_ = nh.advertise<ColorRangeArray>("color_ranges", 1, connect_cb, connect_cb, ros::VoidConstPtr(), /*latch=*/true);
   sub_info_ = nh.subscribe("camera_info", 1, &LandmarkNodelet::cameraInfoCb, this);
+  // A restarted landmark node continues from the learned ranges the tracker still uses (its
+  // latched active ranges) instead of starting over from the configured ones.
+  std::string resume_from;
+  pnh.param<std::string>("resume_from", resume_from, "tracker/active_color_ranges");
+  if (!resume_from.empty()) {
+    const boost::function<void(const ColorRangeArrayConstPtr&)> resume_cb = [this](const ColorRangeArrayConstPtr& msg) {
+      if (resume_taken_.exchange(true)) return;  // only the first message (the latched state)
+      auto classes = std::make_unique<std::vector<ColorClass>>();
+      std::string error;
+      if (!colorClassesFromMsg(*msg, classes.get(), &error)) return;
+      std::lock_guard<std::mutex> lock(inputs_mutex_);
+      pending_resume_ = std::move(classes);
+    };
+    sub_resume_ = nh.subscribe<ColorRangeArray>(resume_from, 1, resume_cb);
+  }
 }
 
 void LandmarkNodelet::reconfigureCb(LandmarkConfig& config, uint32_t /*level*/) {
@@ -231,26 +254,7 @@ void LandmarkNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
 }
 
 void LandmarkNodelet::edgesCb(const sensor_msgs::ImageConstPtr& msg) {
-  if (mailbox_.put(msg)) stats_.addDrop();  // the worker did not get to the previous frame
-}
-
-void LandmarkNodelet::workerLoop() {
-  if (low_priority_) {
-    // This thread only: nice 19, and SCHED_IDLE where the kernel allows it.
-    const bool niced = setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 19) == 0;
-    sched_param idle{};
-    const bool idled = pthread_setschedparam(pthread_self(), SCHED_IDLE, &idle) == 0;
-    NODELET_INFO("landmark worker runs at low priority (nice 19: %s, SCHED_IDLE: %s)", niced ? "yes" : "no",
-                 idled ? "yes" : "no");
-  }
-  sensor_msgs::ImageConstPtr msg;
-  while (mailbox_.take(&msg)) {
-    try {
-      process(msg);
-    } catch (const std::exception& e) {
-      NODELET_ERROR_THROTTLE(5.0, "landmark processing failed: %s", e.what());
-    }
-  }
+  if (worker_.put(msg)) stats_.addDrop();  // the worker did not get to the previous frame
 }
 
 void LandmarkNodelet::process(const sensor_msgs::ImageConstPtr& msg) {
@@ -373,6 +377,18 @@ void LandmarkNodelet::learn(const std_msgs::Header& header, const cv::Mat& bgr, 
     return;
   }
   learner_->setOptions(options);
+  std::unique_ptr<std::vector<ColorClass>> resume;
+  {
+    std::lock_guard<std::mutex> lock(inputs_mutex_);
+    resume.swap(pending_resume_);
+  }
+  if (resume && !published_learned_) {
+    const int resumed = learner_->resume(*resume, header.stamp.toSec());
+    if (resumed > 0) {
+      NODELET_INFO("resuming from %d learned colour ranges the tracker uses", resumed);
+      published_learned_ = true;
+    }
+  }
   ranges_pending_ = learner_->update(bgr, result, detector_.edgeObjects(), header.stamp.toSec()) || ranges_pending_;
   double period;
   {

@@ -229,15 +229,16 @@ void SimulatorNodelet::timerCb(const ros::TimerEvent&) {
   } else {  // yuv422 (UYVY)
     image = cv_bridge::CvImage(header, "yuv422", bgrToUyvy(frame.image)).toImageMsg();
   }
-  // Stamped when the frame is ready, as a camera driver stamps at capture.
+  // Stamped when the frame is ready, as a camera driver stamps at capture, and published at
+  // once (the tracker's latency counts from the stamp); tf and ground truth follow.
   header.stamp = ros::Time::now();
   image->header = header;
+  pub_camera_.publish(image, boost::make_shared<sensor_msgs::CameraInfo>(cameraInfo(header)));
   if (publish_tf_) publishTransforms(frame, header.stamp);
   pub_truth_.publish(truthMsg(frame, header));
   if (pub_labels_.getNumSubscribers() > 0) {
     pub_labels_.publish(cv_bridge::CvImage(header, "mono8", frame.labels).toImageMsg());
   }
-  pub_camera_.publish(image, boost::make_shared<sensor_msgs::CameraInfo>(cameraInfo(header)));
   stats_.addFrame(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
                   threadCpuMs() - cpu_start_ms);
 }

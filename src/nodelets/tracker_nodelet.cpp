@@ -1,12 +1,17 @@
 // rle_vision/Tracker: the real-time RLE colour blob tracker. A thin wrapper around the core
 // Segmenter + BlobTracker: converts messages, holds the parameters, publishes blobs (and, for
 // cmvision users, the same blobs in cmvision's message shape).
+#include <pthread.h>
+#include <sched.h>
+
 #include <algorithm>
+#include <cstring>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <memory>
 #include <mutex>
+#include <thread>
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <dynamic_reconfigure/server.h>
@@ -15,6 +20,7 @@
 #include <opencv2/imgproc.hpp>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/package.h>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 
 #include "conversions.h"
@@ -34,6 +40,9 @@
 namespace rle_vision {
 
 class TrackerNodelet : public nodelet::Nodelet {
+ public:
+  ~TrackerNodelet() override;
+
  private:
   void onInit() override;
   void connectCb();
@@ -43,6 +52,12 @@ class TrackerNodelet : public nodelet::Nodelet {
   void publishActiveRanges(const ColorTable& table, const ros::Time& stamp);
   void reportDiagnostics(diagnostic_updater::DiagnosticStatusWrapper& status);
 
+  // Images arrive on a queue served by a thread of the tracker's own, so a frame never waits
+  // behind another nodelet's callback on the manager's shared worker threads. Declared before
+  // the subscriber so that it outlives it.
+  ros::CallbackQueue frame_queue_;
+  std::atomic<bool> frame_thread_running_{true};
+  std::thread frame_thread_;
   std::shared_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber sub_image_;
   ros::Subscriber sub_ranges_;
@@ -82,10 +97,36 @@ class TrackerNodelet : public nodelet::Nodelet {
   std::vector<TrackedBlob> blobs_;
 };
 
+TrackerNodelet::~TrackerNodelet() {
+  frame_thread_running_ = false;
+  if (frame_thread_.joinable()) frame_thread_.join();
+}
+
 void TrackerNodelet::onInit() {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
-  it_ = std::make_shared<image_transport::ImageTransport>(nh);
+  ros::NodeHandle frame_nh(nh);
+  frame_nh.setCallbackQueue(&frame_queue_);
+  it_ = std::make_shared<image_transport::ImageTransport>(frame_nh);
+  int realtime_priority = 0;
+  pnh.param("realtime_priority", realtime_priority, 0);
+  frame_thread_ = std::thread([this, realtime_priority] {
+    if (realtime_priority > 0) {
+      // SCHED_FIFO needs CAP_SYS_NICE or an rtprio limit (/etc/security/limits.conf).
+      sched_param param{};
+      param.sched_priority = std::min(realtime_priority, sched_get_priority_max(SCHED_FIFO));
+      const int error = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);
+      if (error != 0) {
+        // Informational: most desktop users lack the permission and the tracker still works.
+        NODELET_INFO("tracker frame thread runs at normal priority: SCHED_FIFO priority %d is not allowed (%s). "
+                     "For the lowest latency allow it with an rtprio limit in /etc/security/limits.conf; "
+                     "~realtime_priority 0 silences this", param.sched_priority, strerror(error));
+      } else {
+        NODELET_INFO("tracker frame thread runs at SCHED_FIFO priority %d", param.sched_priority);
+      }
+    }
+    while (frame_thread_running_) frame_queue_.callAvailable(ros::WallDuration(0.1));
+  });
   pnh.param("queue_size", queue_size_, 1);
   queue_size_ = std::max(1, queue_size_);
   pnh.param("publish_cmvision_blobs", publish_cmvision_blobs_, false);

@@ -215,6 +215,39 @@ TEST(ColorLearner, UnmeasuredClassesDriftBackToTheirConfiguredRange) {
   EXPECT_EQ(learner.classes()[0].source, "config");
 }
 
+TEST(ColorLearner, ResumesFromRangesLearnedBefore) {
+  // A restarted landmark node continues from the ranges the tracker still uses: same name and
+  // space and source "learned" resume; anything else is ignored.
+  ColorLearner learner(obstacleClasses(), LearningOptions());
+  std::vector<ColorClass> earlier = obstacleClasses();
+  earlier[0].min = {{20, 90, 170}};
+  earlier[0].max = {{120, 125, 240}};
+  earlier[0].source = "learned";
+  earlier[1].min = {{0, 0, 0}};  // blue: configured, not learned
+  ColorClass other = test::makeClass("green", ColorSpace::YUV, {{0, 0, 0}}, {{255, 255, 255}});
+  other.source = "learned";
+  earlier.push_back(other);
+  ColorClass wrong_space = test::makeClass("blue", ColorSpace::RGB, {{0, 0, 0}}, {{9, 9, 9}});
+  wrong_space.source = "learned";
+  earlier.push_back(wrong_space);
+  EXPECT_EQ(learner.resume(earlier, 5.0), 1);
+  ASSERT_EQ(learner.classes().size(), 2u);
+  EXPECT_EQ(learner.classes()[0].min, earlier[0].min);
+  EXPECT_EQ(learner.classes()[0].max, earlier[0].max);
+  EXPECT_EQ(learner.classes()[0].source, "learned");
+  EXPECT_EQ(learner.classes()[1].min, obstacleClasses()[1].min);
+  EXPECT_EQ(learner.classes()[1].source, "config");
+  // Resumed ranges are ordinary learned state: unseen, they drift back to the configured range.
+  LearningOptions options;
+  options.stale_after_s = 1.0;
+  learner.setOptions(options);
+  SyntheticFrame empty = boxFrame(cv::Scalar(50, 140, 40));
+  empty.landmarks.lines.clear();
+  for (int i = 0; i < 120; ++i) learner.update(empty.image, empty.landmarks, empty.objects, 5.0 + i / 30.0);
+  EXPECT_EQ(learner.classes()[0].min, obstacleClasses()[0].min);
+  EXPECT_EQ(learner.classes()[0].source, "config");
+}
+
 TEST(ColorLearner, PersistentUnknownColoursBecomeLearnedClassesWhenAsked) {
   LearningOptions options;
   options.create_classes = true;

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Latency under load: runs the demo pipeline (simulator -> tracker, edge detector, landmark,
+# ground projector, monitor, all at 30 Hz) for BENCH_SECONDS (default 60) at 640x480 and at
+# 1280x720, and writes tracker latency, drops, landmark skips and CPU per node to
+# bench/results/latency.json. Both sizes run twice: as launched by default (the tracker's frame
+# thread at SCHED_FIFO priority 50, where the system allows it) and with realtime_priority:=0
+# (normal priority, as on a system that does not allow it).
+set -euo pipefail
+source "$(dirname "$0")/env.sh"
+source_workspace
+seconds="${BENCH_SECONDS:-60}"
+out="$ROOT/bench/results/latency.json"
+mkdir -p "$ROOT/bench/results"
+rm -f "$out"
+for run in 640x480 1280x720 640x480@normal 1280x720@normal; do
+  size=${run%@*}
+  priority=50
+  [[ "$run" == *@normal ]] && priority=0
+  width=${size%x*}
+  height=${size#*x}
+  scene="$WS/bench_scene_$size.yaml"
+  sed "s/^image: .*/image: {width: $width, height: $height}/" "$ROOT/config/scene_default.yaml" >"$scene"
+  echo "[bench-latency] $size at 30 Hz for $seconds s (plus start-up), tracker realtime_priority $priority"
+  roslaunch --no-summary rle_vision demo.launch rviz:=false scene_file:="$scene" realtime_priority:=$priority \
+    duration_s:=$((seconds + 30)) >"$WS/bench_latency_$run.log" 2>&1 &
+  launch_pid=$!
+  python3 "$ROOT/bench/latency_probe.py" "$run" "$seconds" "$out" || status=$?
+  kill -INT "$launch_pid" 2>/dev/null || true
+  wait "$launch_pid" 2>/dev/null || true
+  if [[ -n "${status:-}" ]]; then
+    echo "[bench-latency] the probe failed; the launch log is $WS/bench_latency_$run.log"
+    exit 1
+  fi
+done
+echo "[bench-latency] wrote $out"
