@@ -240,7 +240,7 @@ void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
   std::string error;
   if (!viewImage(*msg, &format, &image, &error)) {
     if (input_errors_.shouldLog(error)) {
-      NODELET_ERROR("dropping image on %s: %s", sub_image_.getTopic().c_str(), error.c_str());
+      NODELET_ERROR("dropping image on %s: %s", getNodeHandle().resolveName("image_raw").c_str(), error.c_str());
     }
     return;
   }
