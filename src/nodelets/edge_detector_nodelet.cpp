@@ -79,7 +79,8 @@ void EdgeDetectorNodelet::onInit() {
           NODELET_INFO("edge worker runs at low priority (nice 19: %s, SCHED_IDLE: %s)", niced ? "yes" : "no",
                        idled ? "yes" : "no");
         }
-      });
+      },
+      [this](const char* what) { NODELET_ERROR_THROTTLE(5.0, "edge detection failed: %s", what); });
 
   std::lock_guard<std::mutex> lock(connect_mutex_);
   const image_transport::SubscriberStatusCallback connect_cb =

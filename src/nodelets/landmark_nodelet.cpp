@@ -153,20 +153,14 @@ void LandmarkNodelet::onInit() {
   diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
 
   worker_.start(
-      low_priority_,
-      [this](const sensor_msgs::ImageConstPtr& msg) {
-        try {
-          process(msg);
-        } catch (const std::exception& e) {
-          NODELET_ERROR_THROTTLE(5.0, "landmark processing failed: %s", e.what());
-        }
-      },
+      low_priority_, [this](const sensor_msgs::ImageConstPtr& msg) { process(msg); },
       [this](bool niced, bool idled) {
         if (low_priority_) {
           NODELET_INFO("landmark worker runs at low priority (nice 19: %s, SCHED_IDLE: %s)", niced ? "yes" : "no",
                        idled ? "yes" : "no");
         }
-      });
+      },
+      [this](const char* what) { NODELET_ERROR_THROTTLE(5.0, "landmark processing failed: %s", what); });
 
   std::lock_guard<std::mutex> lock(connect_mutex_);
   const ros::SubscriberStatusCallback connect_cb = [this](const ros::SingleSubscriberPublisher&) { connectCb(); };

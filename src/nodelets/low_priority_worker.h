@@ -10,6 +10,7 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
+#include <exception>
 #include <functional>
 #include <string>
 #include <thread>
@@ -25,9 +26,12 @@ class LowPriorityWorker {
   using Process = std::function<void(const sensor_msgs::ImageConstPtr&)>;
   // `started(niced, idled)` runs on the worker thread once its priority is set.
   using Started = std::function<void(bool niced, bool idled)>;
+  // `failed(what)` gets an exception `process` threw: one bad frame must not end the thread
+  // (an exception escaping it would terminate the whole nodelet manager, tracker included).
+  using Failed = std::function<void(const char* what)>;
 
-  void start(bool low_priority, Process process, Started started) {
-    thread_ = std::thread([this, low_priority, process, started] {
+  void start(bool low_priority, Process process, Started started, Failed failed) {
+    thread_ = std::thread([this, low_priority, process, started, failed] {
       bool niced = false, idled = false;
       if (low_priority) {
         niced = setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 19) == 0;
@@ -36,7 +40,13 @@ class LowPriorityWorker {
       }
       started(niced, idled);
       sensor_msgs::ImageConstPtr msg;
-      while (mailbox_.take(&msg)) process(msg);
+      while (mailbox_.take(&msg)) {
+        try {
+          process(msg);
+        } catch (const std::exception& e) {
+          failed(e.what());
+        }
+      }
     });
   }
 
