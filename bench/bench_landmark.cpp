@@ -18,19 +18,23 @@ namespace {
 constexpr int kFrames = 20;  // frames of the walking gait, one every 7 frames (0.23 s)
 
 // OpenCV's 5x5 Sobel doing our job: x and y derivatives of the 3 channels, the largest
-// channel magnitude, scaled like ours.
-void opencvSobel(const cv::Mat& bgr, double gain, cv::Mat* gx, cv::Mat* gy, cv::Mat* edges) {
-  cv::Sobel(bgr, *gx, CV_16S, 1, 0, 5);
-  cv::Sobel(bgr, *gy, CV_16S, 0, 1, 5);
-  cv::Mat fx, fy, magnitude;
-  gx->convertTo(fx, CV_32F);
-  gy->convertTo(fy, CV_32F);
-  cv::magnitude(fx.reshape(1), fy.reshape(1), magnitude);
-  magnitude = magnitude.reshape(3);
+// channel magnitude, scaled like ours. Its buffers persist across calls, as ours do (fresh
+// multi-megabyte buffers every frame would time page faults, not the filter).
+struct OpencvSobelBuffers {
+  cv::Mat gx, gy, fx, fy, magnitude, largest;
   std::vector<cv::Mat> channels;
-  cv::split(magnitude, channels);
-  cv::Mat largest = cv::max(cv::max(channels[0], channels[1]), channels[2]);
-  largest.convertTo(*edges, CV_8U, gain / kSobel5StepGain);
+};
+
+void opencvSobel(const cv::Mat& bgr, double gain, OpencvSobelBuffers* b, cv::Mat* edges) {
+  cv::Sobel(bgr, b->gx, CV_16S, 1, 0, 5);
+  cv::Sobel(bgr, b->gy, CV_16S, 0, 1, 5);
+  b->gx.convertTo(b->fx, CV_32F);
+  b->gy.convertTo(b->fy, CV_32F);
+  cv::magnitude(b->fx.reshape(1), b->fy.reshape(1), b->magnitude);
+  cv::split(b->magnitude.reshape(3), b->channels);
+  cv::max(b->channels[0], b->channels[1], b->largest);
+  cv::max(b->largest, b->channels[2], b->largest);
+  b->largest.convertTo(*edges, CV_8U, gain / kSobel5StepGain);
 }
 
 struct LineOut {
@@ -67,13 +71,17 @@ int main(int argc, char** argv) {
   LandmarkDetector detector;
   Sobel5 sobel5;
   LandmarkResult result;
+  EdgeObjectFinder finder;
+  RleHough rle_hough;
+  std::vector<double> objects_ms, hough_only_ms;
   std::vector<double> sobel_ms, opencv_sobel_ms, opencv_derivatives_ms, total_ms, hough_ms, houghp_ms, houghs_ms, horizon_err;
   MatchScore ours, opencv;
   uint64_t pairs_rle = 0, pairs_global = 0;
   cv::Mat edges, cv_edges, gx, gy;
+  OpencvSobelBuffers cv_buffers;
   for (const SimFrame& frame : frames) {
     sobel_ms.push_back(bench::medianMs([&] { sobel5.edges(frame.image, options.edge_gain, &edges); }, 30, 3));
-    opencv_sobel_ms.push_back(bench::medianMs([&] { opencvSobel(frame.image, options.edge_gain, &gx, &gy, &cv_edges); }, 10, 2));
+    opencv_sobel_ms.push_back(bench::medianMs([&] { opencvSobel(frame.image, options.edge_gain, &cv_buffers, &cv_edges); }, 10, 2));
     // cv::Sobel's two derivative passes alone (no magnitude): a lower bound for OpenCV.
     opencv_derivatives_ms.push_back(bench::medianMs([&] {
       cv::Sobel(frame.image, gx, CV_16S, 1, 0, 5);
@@ -82,6 +90,14 @@ int main(int argc, char** argv) {
     // The whole landmark step, and the Hough + horizon step alone on the same edge image.
     total_ms.push_back(bench::medianMs([&] { detector.detectInImage(frame.image, options, &result); }, 15, 2));
     hough_ms.push_back(bench::medianMs([&] { detector.detectInEdges(edges, options, &result); }, 15, 2));
+    // Its two parts: the RLE of the edge image into edge objects, and the Hough on them.
+    objects_ms.push_back(bench::medianMs([&] { finder.find(edges, options.objects); }, 15, 2));
+    std::vector<DetectedLine> hough_lines;
+    HoughStats hough_stats;
+    hough_only_ms.push_back(bench::medianMs([&] {
+      rle_hough.detect(finder, edges.cols, edges.rows, options.hough, &hough_lines, &hough_stats, &edges,
+                   options.objects.gray_threshold);
+    }, 15, 2));
     pairs_rle += result.hough.sample_pairs;
     pairs_global += result.hough.global_sample_pairs;
     // OpenCV's Hough on the same edge image, thresholded at our gray threshold.
@@ -113,6 +129,7 @@ int main(int argc, char** argv) {
   const double sobel = median(sobel_ms), cv_sobel = median(opencv_sobel_ms), total = median(total_ms);
   const double cv_derivatives = median(opencv_derivatives_ms);
   const double hough = median(hough_ms), houghp = median(houghp_ms), houghs = median(houghs_ms);
+  const double objects = median(objects_ms), hough_only = median(hough_only_ms);
   std::printf("rle_vision landmark benchmark: %d simulator frames 640x480 (config/scene_default.yaml, walking gait)\n", kFrames);
   std::printf("medians over frames of per-frame medians, one thread pinned to one CPU\n");
   std::printf("  %-46s %8.3f ms\n", "our 5x5 Sobel (3 channels, max magnitude)", sobel);
@@ -120,7 +137,10 @@ int main(int argc, char** argv) {
   std::printf("  %-46s %8.3f ms   (ours %.1fx faster)\n", "OpenCV cv::Sobel x and y only (no magnitude)", cv_derivatives, cv_derivatives / sobel);
   std::printf("  %-46s %8.3f ms   (target <= 3)\n", "landmark total: Sobel + RLE Hough + horizon", total);
   std::printf("  %-46s %8.3f ms\n", "RLE Hough + horizon on the edge image", hough);
-  std::printf("  %-46s %8.3f ms   (ours %.1fx faster)\n", "cv::HoughLinesP on the same edge image", houghp, houghp / hough);
+  std::printf("  %-46s %8.3f ms\n", "  of which: RLE into edge objects", objects);
+  std::printf("  %-46s %8.3f ms\n", "  of which: the Hough on the edge objects", hough_only);
+  std::printf("  %-46s %8.3f ms   (ours %.1fx faster in all, %.1fx the Hough alone)\n", "cv::HoughLinesP on the same edge image",
+              houghp, houghp / hough, houghp / hough_only);
   std::printf("  %-46s %8.3f ms\n", "cv::HoughLines on the same edge image", houghs);
   std::printf("  line recall / precision, ours:   %.3f / %.3f  (%d truth edges >= 30 px)\n", ours.recall(), ours.precision(), ours.truths);
   std::printf("  line recall / precision, OpenCV: %.3f / %.3f\n", opencv.recall(), opencv.precision());
@@ -136,6 +156,9 @@ int main(int argc, char** argv) {
                                {"opencv_houghp_ms", houghp},
                                {"opencv_hough_ms", houghs},
                                {"speedup_vs_houghp", houghp / hough},
+                               {"edge_objects_ms", objects},
+                               {"hough_only_ms", hough_only},
+                               {"speedup_vs_houghp_hough_only", houghp / hough_only},
                                {"recall", ours.recall()},
                                {"precision", ours.precision()},
                                {"opencv_recall", opencv.recall()},

@@ -10,7 +10,15 @@ namespace rle_vision {
 struct PointSums {
   double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
 
-  void addPixel(double x, double y, double weight = 1.0);
+  // Inline: the Hough's band scans and the ridge fit add every pixel through it.
+  void addPixel(double x, double y, double weight = 1.0) {
+    n += weight;
+    sx += weight * x;
+    sy += weight * y;
+    sxx += weight * x * x;
+    sxy += weight * x * y;
+    syy += weight * y * y;
+  }
   // Pixels x0..x1 (inclusive) of row y.
   void addRun(int x0, int x1, int y);
   void add(const PointSums& other);

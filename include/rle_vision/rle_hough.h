@@ -28,6 +28,11 @@ namespace rle_vision {
 
 struct ObjectRuns;
 
+// An accumulator cell's line (internal): a x + b y + c = 0 with (a, b) = (-sin, cos) theta.
+struct HoughCellLine {
+  double a, b, c, theta;
+};
+
 struct HoughOptions {
   int min_votes = 5;                  // votes a peak needs to be a line (the paper's 5)
   double min_line_length_px = 30;     // shortest line wanted: sizes the sampling, filters output
@@ -95,8 +100,9 @@ class RleHough {
   int extractLines(const ObjectRuns& runs, const EdgeObject& object, int index, const HoughOptions& options,
                    const cv::Mat* edge_image, double ridge_strength, std::vector<DetectedLine>* found,
                    HoughStats* stats);
-  // Appends the supported segments of the line the seed leads to.
-  void refine(const ObjectRuns& runs, const ImageLine& seed, const HoughOptions& options,
+  // Appends the supported segments of the line the seed leads to; false (and nothing) when
+  // lines found before have taken the pixels near the seed.
+  bool refine(const ObjectRuns& runs, const ImageLine& seed, const HoughOptions& options,
               const cv::Mat* edge_image, double ridge_strength, std::vector<DetectedLine>* out) const;
 
   struct PixelXY {
@@ -108,9 +114,15 @@ class RleHough {
   std::vector<Run> sample_runs_;
   std::vector<int> bucket_start_, fill_;  // cells_ of theta bin b: [bucket_start_[b], bucket_start_[b + 1])
   std::vector<double> bin_theta_, bin_normal_x_, bin_normal_y_;  // per theta bin
+  double bins_for_deg_ = 0;                                       // the bin size they are for
+  std::vector<HoughCellLine> cell_lines_;                         // per cell of cells_
+  std::vector<char> used_;                                        // per cell: grouped or retired
+  std::vector<uint32_t> order_, members_;
   int theta_bins_ = 0, intercept_bins_ = 0;
   double alpha_ = 0;
   std::vector<Cell> table_;
+  std::vector<uint32_t> occupied_;  // slots of table_ in use
+  std::vector<uint32_t> keys_;      // the cell each pair of a round votes for
   std::vector<Cell> cells_;
   std::vector<DetectedLine> refined_;
 };

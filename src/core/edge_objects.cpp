@@ -1,5 +1,6 @@
 #include "rle_vision/edge_objects.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "simd_dispatch.h"
@@ -14,34 +15,46 @@ void edgeClasses(const uint8_t* __restrict edges, int width, uint8_t gray, uint8
   }
 }
 
+// One row of thinEdges: up, mid, down are rows y - 1, y, y + 1; x in [1, width - 1).
+// Branch-free so that it vectorises.
+RLE_VISION_HOT
+void thinRow(const uint8_t* __restrict up, const uint8_t* __restrict mid, const uint8_t* __restrict down, int width,
+             uint8_t min_value, uint8_t* __restrict out) {
+  for (int x = 1; x + 1 < width; ++x) {
+    const int16_t v = mid[x];
+    // The four directions' neighbour pairs: (1, 0), (0, 1), (1, 1), (1, -1).
+    const int16_t a0 = mid[x + 1], b0 = mid[x - 1];
+    const int16_t a1 = down[x], b1 = up[x];
+    const int16_t a2 = down[x + 1], b2 = up[x - 1];
+    const int16_t a3 = up[x + 1], b3 = down[x - 1];
+    const int16_t c0 = 2 * v - a0 - b0, c1 = 2 * v - a1 - b1, c2 = 2 * v - a2 - b2, c3 = 2 * v - a3 - b3;
+    // The direction of largest curvature (the first one on ties), and whether v is a maximum
+    // across it. Integer selects and & (not && or bool) keep the loop vectorisable.
+    const int16_t m0 = (v >= a0) & (v >= b0), m1 = (v >= a1) & (v >= b1);
+    const int16_t m2 = (v >= a2) & (v >= b2), m3 = (v >= a3) & (v >= b3);
+    const int16_t first_two = c0 >= c1, last_two = c2 >= c3;
+    const int16_t c01 = first_two ? c0 : c1, m01 = first_two ? m0 : m1;
+    const int16_t c23 = last_two ? c2 : c3, m23 = last_two ? m2 : m3;
+    const int16_t keep = (c01 >= c23 ? m01 : m23) & (v >= min_value);
+    out[x] = static_cast<uint8_t>(keep ? v : 0);
+  }
+}
+
 }  // namespace
 
 void thinEdges(const cv::Mat& edges, uint8_t min_value, cv::Mat* thin) {
   thin->create(edges.size(), CV_8UC1);
-  thin->setTo(0);
   const int w = edges.cols, h = edges.rows;
-  // (dx, dy) of the four directions across which a crest is a maximum.
-  static const int kDirections[4][2] = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
-  for (int y = 1; y + 1 < h; ++y) {
-    const uint8_t* row = edges.ptr<uint8_t>(y);
+  // Border pixels have no neighbours on one side: never crests.
+  for (int y = 0; y < h; ++y) {
     uint8_t* out = thin->ptr<uint8_t>(y);
-    for (int x = 1; x + 1 < w; ++x) {
-      const int v = row[x];
-      if (v < min_value) continue;
-      int best_curvature = -1, best = 0;
-      for (int d = 0; d < 4; ++d) {
-        const int a = edges.at<uint8_t>(y + kDirections[d][1], x + kDirections[d][0]);
-        const int b = edges.at<uint8_t>(y - kDirections[d][1], x - kDirections[d][0]);
-        const int curvature = 2 * v - a - b;
-        if (curvature > best_curvature) {
-          best_curvature = curvature;
-          best = d;
-        }
-      }
-      const int a = edges.at<uint8_t>(y + kDirections[best][1], x + kDirections[best][0]);
-      const int b = edges.at<uint8_t>(y - kDirections[best][1], x - kDirections[best][0]);
-      if (v >= a && v >= b) out[x] = static_cast<uint8_t>(v);
+    if (y == 0 || y + 1 == h) {
+      std::fill(out, out + w, 0);
+      continue;
     }
+    out[0] = 0;
+    out[w - 1] = 0;
+    thinRow(edges.ptr<uint8_t>(y - 1), edges.ptr<uint8_t>(y), edges.ptr<uint8_t>(y + 1), w, min_value, out);
   }
 }
 

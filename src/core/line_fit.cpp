@@ -5,15 +5,6 @@
 
 namespace rle_vision {
 
-void PointSums::addPixel(double x, double y, double weight) {
-  n += weight;
-  sx += weight * x;
-  sy += weight * y;
-  sxx += weight * x * x;
-  sxy += weight * x * y;
-  syy += weight * y * y;
-}
-
 void PointSums::addRun(int x0, int x1, int y) {
   const double count = x1 - x0 + 1;
   const double sum_x = 0.5 * (static_cast<double>(x0) + x1) * count;

@@ -41,18 +41,36 @@ void ridgePoints(const cv::Mat& edges, const ImageLine& line, double t0, double 
   const double t_origin = px * c + py * s;
   constexpr double kStep = 0.5;
   const int half = static_cast<int>(std::ceil(o.half_width_px / kStep));
-  thread_local std::vector<double> profile;
-  profile.resize(2 * half + 1);
+  thread_local std::vector<double> profile_buffer;
+  profile_buffer.resize(2 * half + 1);
+  double* const profile = profile_buffer.data();
   const double floor = 0.5 * o.min_strength;
+  // Samples whose 2x2 neighbourhood is inside the image: x in [0, cols - 1), y in [0, rows - 1).
+  const double x_max = edges.cols - 1, y_max = edges.rows - 1;
+  const size_t step = edges.step[0];
   for (double t = std::ceil(t0); t <= t1; t += 1.0) {
     const double bx = px + (t - t_origin) * c, by = py + (t - t_origin) * s;
-    int best = -1;
-    for (int k = -half; k <= half; ++k) {
-      profile[k + half] = sample(edges, bx + k * kStep * nx, by + k * kStep * ny);
-      // On a plateau keep the position nearest the line.
-      if (best < 0 || profile[k + half] > profile[best] ||
-          (profile[k + half] == profile[best] && std::abs(k) < std::abs(best - half))) {
-        best = k + half;
+    const double ax = bx - half * kStep * nx, ay = by - half * kStep * ny;  // the profile's ends
+    const double zx = bx + half * kStep * nx, zy = by + half * kStep * ny;
+    if (std::min(ax, zx) >= 0 && std::max(ax, zx) < x_max && std::min(ay, zy) >= 0 && std::max(ay, zy) < y_max) {
+      // The whole profile is inside: no bounds checks, and truncation is floor.
+      const uint8_t* data = edges.data;
+      for (int k = -half; k <= half; ++k) {
+        const double x = bx + k * kStep * nx, y = by + k * kStep * ny;
+        const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+        const double fx = x - x0, fy = y - y0;
+        const uint8_t* r0 = data + y0 * step + x0;
+        const uint8_t* r1 = r0 + step;
+        profile[k + half] = (1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) + fy * ((1 - fx) * r1[0] + fx * r1[1]);
+      }
+    } else {
+      for (int k = -half; k <= half; ++k) profile[k + half] = sample(edges, bx + k * kStep * nx, by + k * kStep * ny);
+    }
+    // The strongest sample; on a plateau the one nearest the line.
+    int best = 0;
+    for (int k = 1; k <= 2 * half; ++k) {
+      if (profile[k] > profile[best] || (profile[k] == profile[best] && std::abs(k - half) < std::abs(best - half))) {
+        best = k;
       }
     }
     if (profile[best] < o.min_strength) continue;
@@ -72,6 +90,23 @@ void ridgePoints(const cv::Mat& edges, const ImageLine& line, double t0, double 
     const double offset = moment / weight;
     out->push_back({bx + offset * nx, by + offset * ny, t});
   }
+}
+
+// The median of v[0..4] by a few compares (nth_element on 5 values is far slower).
+inline double median5(const double* v) {
+  double a = v[0], b = v[1], c = v[2], d = v[3], e = v[4];
+  if (a > b) std::swap(a, b);
+  if (c > d) std::swap(c, d);
+  // The smaller of a and c has three values above it, so it is below the median: replace it
+  // with e. The median is then the second smallest of the four left.
+  if (a < c) {
+    a = e;
+    if (a > b) std::swap(a, b);
+  } else {
+    c = e;
+    if (c > d) std::swap(c, d);
+  }
+  return a < c ? std::min(b, c) : std::min(a, d);
 }
 
 bool fitPoints(const std::vector<RidgePoint>& points, size_t first, size_t last, ImageLine* line,
@@ -101,11 +136,9 @@ void splitAndFit(const std::vector<RidgePoint>& points, size_t first, size_t las
   size_t farthest = first;
   double largest = 0;
   for (size_t i = first + 2; i + 2 <= last; ++i) {
-    double window[5];
-    for (int k = 0; k < 5; ++k) window[k] = deviation[i - first - 2 + k];
-    std::nth_element(window, window + 2, window + 5);
-    if (window[2] > largest) {
-      largest = window[2];
+    const double median = median5(&deviation[i - first - 2]);
+    if (median > largest) {
+      largest = median;
       farthest = i;
     }
   }

@@ -24,23 +24,11 @@ Homogeneous homogeneous(const ImageLine& line) {
 }
 
 // Position along the line of pixel (x, y): the direction is (cos theta, sin theta) = (b, -a).
-inline double along(const Homogeneous& h, double x, double y) { return h.b * x - h.a * y; }
-inline double distance(const Homogeneous& h, double x, double y) { return h.a * x + h.b * y + h.c; }
-
-// atan2(y, x) in degrees for x >= 0, within 0.01 deg (a bin is 1 deg): a rational
-// approximation of atan on [0, 1] and the octant symmetries.
-inline double fastAtan2Deg(double y, double x) {
-  const double ay = std::fabs(y);
-  if (x == 0 && ay == 0) return 0;
-  const bool steep = ay > x;
-  const double r = steep ? x / ay : ay / x;  // in [0, 1]
-  // atan(r) ~ r (pi/4 + 0.273 (1 - r)), max error 0.0038 rad; refine with one Newton-like
-  // correction of the classic form for 0.01 deg accuracy.
-  const double a = r * (0.9998660 + r * r * (-0.3302995 + r * r * (0.1801410 + r * r * (-0.0851330 + r * r * 0.0208351))));
-  double deg = a * (180.0 / M_PI);
-  if (steep) deg = 90.0 - deg;
-  return y < 0 ? -deg : deg;
-}
+// (Also for the accumulator's cell lines, which carry the same a, b, c.)
+template <class Line>
+inline double along(const Line& h, double x, double y) { return h.b * x - h.a * y; }
+template <class Line>
+inline double distance(const Line& h, double x, double y) { return h.a * x + h.b * y + h.c; }
 
 struct Interval {
   double t0, t1;
@@ -50,7 +38,10 @@ struct Interval {
 
 // Stretches of the line whose pixels follow each other with gaps up to max_gap.
 std::vector<Interval> pieces(std::vector<Interval>* intervals, double max_gap) {
-  std::sort(intervals->begin(), intervals->end(), [](const Interval& a, const Interval& b) { return a.t0 < b.t0; });
+  // Rows are visited in order, so the intervals mostly come sorted one way or the other.
+  const auto before = [](const Interval& a, const Interval& b) { return a.t0 < b.t0; };
+  if (std::is_sorted(intervals->rbegin(), intervals->rend(), before)) std::reverse(intervals->begin(), intervals->end());
+  if (!std::is_sorted(intervals->begin(), intervals->end(), before)) std::sort(intervals->begin(), intervals->end(), before);
   std::vector<Interval> out;
   for (const Interval& i : *intervals) {
     if (!out.empty() && i.t0 - out.back().t1 <= max_gap) {
@@ -97,76 +88,127 @@ struct ObjectRuns {
   int stride() const { return right - left + 1; }
   bool isClaimed(int x, int y) const { return claimed[(y - top) * stride() + (x - left)] != 0; }
 
-  // Indices [*first, *last) of the runs whose rows the band of `distance` around the line
-  // crosses inside the object's bounding box.
-  void rowsOfBand(const Homogeneous& h, double distance, int* first, int* last) const {
-    int y0 = top, y1 = bottom;
+  // Rows [*y0, *y1] the band of `distance` around the line crosses inside the object's
+  // bounding box (and, with `t_range`, where its positions along the line are in range).
+  void rowsOfBand(const Homogeneous& h, double distance, const double* t_range, int* y0, int* y1) const {
+    *y0 = top;
+    *y1 = bottom;
     if (std::fabs(h.b) > 1e-3) {  // y = -(a x + c) / b, widened by distance / |b|
       const double ya = -(h.a * (left - 1) + h.c) / h.b, yb = -(h.a * (right + 1) + h.c) / h.b;
       const double reach = distance / std::fabs(h.b);
-      y0 = std::max(y0, static_cast<int>(std::floor(std::min(ya, yb) - reach)));
-      y1 = std::min(y1, static_cast<int>(std::ceil(std::max(ya, yb) + reach)));
+      *y0 = std::max(*y0, static_cast<int>(std::floor(std::min(ya, yb) - reach)));
+      *y1 = std::min(*y1, static_cast<int>(std::ceil(std::max(ya, yb) + reach)));
     }
-    if (y0 > y1) {
-      *first = *last = 0;
-      return;
+    if (t_range && std::fabs(h.a) > 1e-3) {  // t = b x - a y: y = (b x - t) / a at the box's corners
+      double lo = 1e300, hi = -1e300;
+      for (double x : {left - 1.0, right + 1.0}) {
+        for (int k = 0; k < 2; ++k) {
+          const double y = (h.b * x - t_range[k]) / h.a;
+          lo = std::min(lo, y);
+          hi = std::max(hi, y);
+        }
+      }
+      *y0 = std::max(*y0, static_cast<int>(std::floor(lo)) - 1);
+      *y1 = std::min(*y1, static_cast<int>(std::ceil(hi)) + 1);
     }
-    *first = row_first[y0 - top];
-    *last = row_first[y1 - top + 1];
   }
 };
 
 namespace {
 
+// floor and ceil of v clamped to [lo - 1, hi + 1] (which keeps the int conversion defined):
+// std::floor is a library call on baseline x86-64, and these run once per row of a band.
+inline int floorWithin(double v, int lo, int hi) {
+  v = std::min(std::max(v, lo - 1.0), hi + 1.0);
+  const int i = static_cast<int>(v);
+  return i - (v < i);
+}
+inline int ceilWithin(double v, int lo, int hi) {
+  v = std::min(std::max(v, lo - 1.0), hi + 1.0);
+  const int i = static_cast<int>(v);
+  return i + (v > i);
+}
+
+// One run's pixels [lo, hi] of row y (all of them in the band).
+inline void collectRun(const ObjectRuns& object, const Homogeneous& h, int lo, int hi, int y, PointSums* sums,
+                       std::vector<Interval>* intervals, bool claim, int inner_lo, int inner_hi, double* inner_count) {
+  uint8_t* row = object.claimed + (y - object.top) * object.stride() - object.left;
+  int free = 0;
+  for (int x = lo; x <= hi; ++x) {
+    if (!row[x]) {
+      ++free;
+      if (sums) sums->addPixel(x, y);
+    }
+    if (claim) row[x] = 1;
+  }
+  if (inner_count) {
+    for (int x = std::max(lo, inner_lo); x <= std::min(hi, inner_hi); ++x) *inner_count += row[x] ? 0 : 1;
+  }
+  if (intervals) {
+    double t0 = along(h, lo, y), t1 = along(h, hi, y);
+    if (t0 > t1) std::swap(t0, t1);
+    intervals->push_back({t0, t1, static_cast<double>(hi - lo + 1), static_cast<double>(free)});
+  }
+}
+
 // The object's pixels within `band` of the line and, when `t_range` is given, with a position
 // along the line in [t_lo, t_hi]: the sums of those no line has claimed yet, their intervals
-// along the line (counting all and unclaimed pixels); `claim` then marks them claimed.
+// along the line (counting all and unclaimed pixels); `claim` then marks them claimed. With
+// `inner_count`, it also counts the unclaimed pixels within `inner_band` (< band) of the line.
 void collect(const ObjectRuns& object, const Homogeneous& h, double band, const double* t_range,
-             PointSums* sums, std::vector<Interval>* intervals, bool claim = false) {
-  int first = 0, last = 0;
-  object.rowsOfBand(h, band, &first, &last);
+             PointSums* sums, std::vector<Interval>* intervals, bool claim = false, double inner_band = 0,
+             double* inner_count = nullptr) {
+  int y0 = 0, y1 = -1;
+  object.rowsOfBand(h, band, t_range, &y0, &y1);
+  // Per row, the x range the band (and t range) allows; then only the runs overlapping it (a
+  // row's runs are sorted by x, so the first one is found by bisection).
   // Pixels x of row y with |a x + b y + c| <= band: x in [(-band - o) / a, (band - o) / a].
   const bool level = std::fabs(h.a) < 1e-12;
   const double inv_a = level ? 0.0 : 1.0 / h.a;
-  for (int i = first; i < last; ++i) {
-    const Run& run = object.runs[i];
-    const double offset = h.b * run.y + h.c;
-    int lo = run.x0, hi = run.x1;
+  const bool across = t_range && std::fabs(h.b) >= 1e-12;
+  const double inv_b = across ? 1.0 / h.b : 0.0;
+  for (int y = y0; y <= y1; ++y) {
+    int lo = object.left, hi = object.right;
+    int inner_lo = lo, inner_hi = hi;
+    const double offset = h.b * y + h.c;
     if (level) {
       if (std::fabs(offset) > band) continue;
+      if (std::fabs(offset) > inner_band) inner_hi = inner_lo - 1;
     } else {
       double e0 = (-band - offset) * inv_a, e1 = (band - offset) * inv_a;
       if (e0 > e1) std::swap(e0, e1);
-      lo = std::max(lo, static_cast<int>(std::ceil(e0 - 1e-9)));
-      hi = std::min(hi, static_cast<int>(std::floor(e1 + 1e-9)));
-      if (lo > hi) continue;
+      lo = std::max(lo, ceilWithin(e0 - 1e-9, object.left, object.right));
+      hi = std::min(hi, floorWithin(e1 + 1e-9, object.left, object.right));
+      if (inner_count) {
+        double i0 = (-inner_band - offset) * inv_a, i1 = (inner_band - offset) * inv_a;
+        if (i0 > i1) std::swap(i0, i1);
+        inner_lo = ceilWithin(i0 - 1e-9, object.left, object.right);
+        inner_hi = floorWithin(i1 + 1e-9, object.left, object.right);
+      }
     }
     if (t_range) {
-      // t = b x - a y is linear in x along the run.
-      if (std::fabs(h.b) < 1e-12) {
-        const double t = -h.a * run.y;
+      // t = b x - a y is linear in x along the row.
+      if (!across) {
+        const double t = -h.a * y;
         if (t < t_range[0] || t > t_range[1]) continue;
       } else {
-        double e0 = (t_range[0] + h.a * run.y) / h.b, e1 = (t_range[1] + h.a * run.y) / h.b;
+        double e0 = (t_range[0] + h.a * y) * inv_b, e1 = (t_range[1] + h.a * y) * inv_b;
         if (e0 > e1) std::swap(e0, e1);
-        lo = std::max(lo, static_cast<int>(std::ceil(e0 - 1e-9)));
-        hi = std::min(hi, static_cast<int>(std::floor(e1 + 1e-9)));
-        if (lo > hi) continue;
+        lo = std::max(lo, ceilWithin(e0 - 1e-9, object.left, object.right));
+        hi = std::min(hi, floorWithin(e1 + 1e-9, object.left, object.right));
       }
     }
-    uint8_t* row = object.claimed + (run.y - object.top) * object.stride() - object.left;
-    int free = 0;
-    for (int x = lo; x <= hi; ++x) {
-      if (!row[x]) {
-        ++free;
-        if (sums) sums->addPixel(x, run.y);
-      }
-      if (claim) row[x] = 1;
+    if (lo > hi) continue;
+    const Run* run_ptr = object.runs + object.row_first[y - object.top];
+    const Run* const row_end = object.runs + object.row_first[y - object.top + 1];
+    if (row_end - run_ptr > 4) {
+      run_ptr = std::partition_point(run_ptr, row_end, [lo](const Run& r) { return r.x1 < lo; });
     }
-    if (intervals) {
-      double t0 = along(h, lo, run.y), t1 = along(h, hi, run.y);
-      if (t0 > t1) std::swap(t0, t1);
-      intervals->push_back({t0, t1, static_cast<double>(hi - lo + 1), static_cast<double>(free)});
+    for (; run_ptr < row_end && run_ptr->x0 <= hi; ++run_ptr) {
+      const Run& run = *run_ptr;
+      if (run.x1 < lo) continue;
+      collectRun(object, h, std::max(lo, static_cast<int>(run.x0)), std::min(hi, static_cast<int>(run.x1)), y,
+                 sums, intervals, claim, inner_lo, inner_hi, inner_count);
     }
   }
 }
@@ -181,19 +223,25 @@ uint64_t RleHough::samplesFor(double object_pixels, const HoughOptions& o) {
   return static_cast<uint64_t>(std::ceil(o.sampling_margin * o.min_votes / (p_i * p_i)));
 }
 
-void RleHough::refine(const ObjectRuns& runs, const ImageLine& seed, const HoughOptions& o,
+bool RleHough::refine(const ObjectRuns& runs, const ImageLine& seed, const HoughOptions& o,
                       const cv::Mat* edge_image, double ridge_strength, std::vector<DetectedLine>* out) const {
   // A least-squares fit on the unclaimed pixels near the seed (a coarse cell): a wide band,
   // then the fitting band, which also maps the stretches of pixels along the line.
   ImageLine line = seed;
   PointSums sums;
   double rms = 0;
-  collect(runs, homogeneous(line), 2 * o.fit_distance_px, nullptr, &sums, nullptr);
-  if (sums.n < 0.5 * o.min_line_length_px || !sums.fitLine(&line, &rms)) return;
+  // A peak whose pixels lines already found have taken (a second peak of one of them, or
+  // chance votes across them) is not worth a refit: counted in the same pass.
+  double unclaimed_near = 0;
+  collect(runs, homogeneous(line), 2 * o.fit_distance_px, nullptr, &sums, nullptr, false, o.fit_distance_px,
+          &unclaimed_near);
+  if (unclaimed_near < 0.5 * o.min_line_length_px) return false;
+  if (sums.n < 0.5 * o.min_line_length_px || !sums.fitLine(&line, &rms)) return true;
   sums = PointSums();
-  std::vector<Interval> intervals;
+  thread_local std::vector<Interval> intervals;  // scratch, reused (this runs per Hough peak)
+  intervals.clear();
   collect(runs, homogeneous(line), o.fit_distance_px, nullptr, &sums, &intervals);
-  if (sums.n < 0.5 * o.min_line_length_px || !sums.fitLine(&line, &rms)) return;
+  if (sums.n < 0.5 * o.min_line_length_px || !sums.fitLine(&line, &rms)) return true;
 
   // Every stretch long enough gives segments (a horizon broken by obstacles gives several).
   for (const Interval& piece : pieces(&intervals, o.max_gap_px)) {
@@ -262,78 +310,103 @@ void RleHough::refine(const ObjectRuns& runs, const ImageLine& seed, const Hough
       out->push_back(d);
     }
   }
+  return true;
 }
 
 void RleHough::vote(const Run* runs, int run_count, uint64_t samples, uint64_t seed, int width, int height,
                     const HoughOptions& o) {
   // Uniform over the runs' pixels, which is the paper's "a run weighted by its length, then a
   // position in it": drawn from a flat table of the pixels.
-  pixels_.clear();
+  size_t total = 0;
+  for (int i = 0; i < run_count; ++i) total += runs[i].length();
+  pixels_.resize(total);
+  PixelXY* pixel = pixels_.data();
   for (int i = 0; i < run_count; ++i) {
-    for (int x = runs[i].x0; x <= runs[i].x1; ++x) pixels_.push_back({static_cast<int16_t>(x), static_cast<int16_t>(runs[i].y)});
+    for (int x = runs[i].x0; x <= runs[i].x1; ++x) *pixel++ = {static_cast<int16_t>(x), static_cast<int16_t>(runs[i].y)};
   }
-  const uint64_t total = pixels_.size();
-  // Sparse accumulator: an open-addressing table of (cell key, votes).
+  // Sparse accumulator: an open-addressing table of (cell key, votes), of which the first
+  // `capacity` slots are used; it is kept empty between rounds by clearing the slots used.
   size_t capacity = 64;
   while (capacity < 2 * samples) capacity *= 2;
-  table_.assign(capacity, Cell{kEmpty, 0});
+  if (table_.size() < capacity) table_.assign(capacity, Cell{kEmpty, 0});
+  occupied_.clear();
   theta_bins_ = static_cast<int>(std::ceil(180.0 / o.theta_bin_deg));
   alpha_ = -std::max(width, height);
   intercept_bins_ = static_cast<int>(std::ceil((width + height - alpha_) / o.intercept_bin_px)) + 1;
 
   uint64_t state = seed;
-  auto draw = [&](double* x, double* y) {
-    // splitmix64, then a multiply-shift into [0, total).
+  auto random64 = [&state]() {  // splitmix64
     uint64_t z = (state += 0x9E3779B97F4A7C15ull);
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    const PixelXY& p = pixels_[static_cast<size_t>((static_cast<unsigned __int128>(z) * total) >> 64)];
-    *x = p.x;
-    *y = p.y;
+    return z ^ (z >> 31);
   };
-  const double min_d2 = o.min_pair_distance_px * o.min_pair_distance_px;
+  // 64 random bits to a pixel: multiply-shift into [0, total).
+  const PixelXY* const table = pixels_.data();
+  auto pick = [table, total](uint64_t bits) {
+    return table[static_cast<size_t>((static_cast<unsigned __int128>(bits) * total) >> 64)];
+  };
+  // Squared distances of pixels (coordinates < 2^13) fit an int; so does the capped limit.
+  const int min_d2 = static_cast<int>(std::ceil(std::min(1e9, o.min_pair_distance_px * o.min_pair_distance_px)));
+  const double per_theta_bin = 1.0 / o.theta_bin_deg, per_intercept_bin = 1.0 / o.intercept_bin_px;
+  constexpr double kRadToDeg = 180.0 / M_PI;
+  keys_.clear();
   for (uint64_t s = 0; s < samples; ++s) {
-    double x1, y1, x2 = 0, y2 = 0;
-    draw(&x1, &y1);
-    bool far_enough = false;
-    for (int attempt = 0; attempt < 3 && !far_enough; ++attempt) {
-      draw(&x2, &y2);
-      far_enough = (x2 - x1) * (x2 - x1) + (y2 - y1) * (y2 - y1) >= min_d2;
+    // A second pixel too close to the first is redrawn (up to twice).
+    const PixelXY p1 = pick(random64());
+    PixelXY p2 = pick(random64());
+    int dx = p2.x - p1.x, dy = p2.y - p1.y;
+    for (int attempt = 1; attempt < 3 && dx * dx + dy * dy < min_d2; ++attempt) {
+      p2 = pick(random64());
+      dx = p2.x - p1.x;
+      dy = p2.y - p1.y;
     }
-    if (!far_enough) continue;
-    // The pair's line: theta in (-90, 90] deg, and the intercept the paper's convention picks
-    // (computed from the slope directly, no tan).
-    double dx = x2 - x1, dy = y2 - y1;
-    if (dx < 0 || (dx == 0 && dy < 0)) {
-      dx = -dx;
-      dy = -dy;
-    }
-    const double theta_deg = fastAtan2Deg(dy, dx);
-    const double intercept = std::fabs(dy) < dx ? y1 - x1 * dy / dx : x1 - y1 * dx / dy;
-    const double shifted = theta_deg + 90.0;
-    const int theta_bin = static_cast<int>(shifted / o.theta_bin_deg) % theta_bins_;
-    const int intercept_bin = std::min(intercept_bins_ - 1, std::max(0, static_cast<int>(std::floor((intercept - alpha_) / o.intercept_bin_px))));
-    const uint32_t key = static_cast<uint32_t>(theta_bin) * static_cast<uint32_t>(intercept_bins_) + static_cast<uint32_t>(intercept_bin);
+    if (dx * dx + dy * dy < min_d2 || (dx == 0 && dy == 0)) continue;
+    // The pair's line: theta in (-90, 90] deg, and the intercept the paper's convention picks,
+    // both from one ratio r in [0, 1] (atan by a polynomial within 0.01 deg, the slope without
+    // tan). Selects rather than branches: the cases come in random order.
+    const bool flip = dx < 0 || (dx == 0 && dy < 0);
+    dx = flip ? -dx : dx;
+    dy = flip ? -dy : dy;
+    const int ady = dy < 0 ? -dy : dy;
+    const bool steep = ady > dx;
+    const double r = static_cast<double>(steep ? dx : ady) / static_cast<double>(steep ? ady : dx);
+    const double r2 = r * r;
+    const double atan_deg = r * (0.9998660 + r2 * (-0.3302995 + r2 * (0.1801410 + r2 * (-0.0851330 + r2 * 0.0208351)))) * kRadToDeg;
+    const double abs_deg = steep ? 90.0 - atan_deg : atan_deg;
+    const double deg = dy < 0 ? -abs_deg : abs_deg;
+    const double signed_r = dy < 0 ? -r : r;
+    // y-intercept y1 - x1 dy/dx below 45 deg, x-intercept x1 - y1 dx/dy from there.
+    const bool y_intercept = ady < dx;
+    const double u = y_intercept ? p1.y : p1.x, v = y_intercept ? p1.x : p1.y;
+    const double intercept = u - v * signed_r;
+    int theta_bin = static_cast<int>((deg + 90.0) * per_theta_bin);
+    if (theta_bin >= theta_bins_) theta_bin -= theta_bins_;  // +90 deg is -90 deg
+    const int intercept_bin = std::min(intercept_bins_ - 1, std::max(0, floorWithin((intercept - alpha_) * per_intercept_bin, 0, intercept_bins_ - 1)));
+    keys_.push_back(static_cast<uint32_t>(theta_bin) * static_cast<uint32_t>(intercept_bins_) + static_cast<uint32_t>(intercept_bin));
+  }
+  // Then the votes (apart from the draws, whose divisions overlap when nothing waits on the
+  // table).
+  for (const uint32_t key : keys_) {
     size_t slot = (key * 2654435761u) & (capacity - 1);
     while (table_[slot].key != kEmpty && table_[slot].key != key) slot = (slot + 1) & (capacity - 1);
-    table_[slot].key = key;
+    if (table_[slot].key == kEmpty) {
+      table_[slot].key = key;
+      occupied_.push_back(static_cast<uint32_t>(slot));
+    }
     ++table_[slot].votes;
   }
-  // Cells in theta-bin order (a counting sort; within a bin, table order, which depends only
-  // on the keys: deterministic).
+  // Cells in theta-bin order (a counting sort; within a bin, in the order the cells were
+  // first voted for: deterministic), and the table emptied again.
   bucket_start_.assign(theta_bins_ + 1, 0);
-  size_t count = 0;
-  for (const Cell& c : table_) {
-    if (c.key == kEmpty) continue;
-    ++bucket_start_[c.key / intercept_bins_ + 1];
-    ++count;
-  }
+  for (uint32_t slot : occupied_) ++bucket_start_[table_[slot].key / intercept_bins_ + 1];
   for (int b = 0; b < theta_bins_; ++b) bucket_start_[b + 1] += bucket_start_[b];
-  cells_.resize(count);
+  cells_.resize(occupied_.size());
   fill_.assign(bucket_start_.begin(), bucket_start_.end() - 1);
-  for (const Cell& c : table_) {
-    if (c.key != kEmpty) cells_[fill_[c.key / intercept_bins_]++] = c;
+  for (uint32_t slot : occupied_) {
+    Cell& c = table_[slot];
+    cells_[fill_[c.key / intercept_bins_]++] = c;
+    c = Cell{kEmpty, 0};
   }
 }
 
@@ -342,51 +415,59 @@ int RleHough::extractLines(const ObjectRuns& indexed, const EdgeObject& object, 
                            HoughStats* stats) {
   const size_t n = cells_.size();
   const std::vector<int>& bucket_start = bucket_start_;
-  // Each theta bin's line angle, direction and normal, computed once.
-  bin_theta_.resize(theta_bins_);
-  bin_normal_x_.resize(theta_bins_);
-  bin_normal_y_.resize(theta_bins_);
-  for (int b = 0; b < theta_bins_; ++b) {
-    bin_theta_[b] = normalizeLineAngle((-90.0 + (b + 0.5) * o.theta_bin_deg) * kDeg);
-    bin_normal_x_[b] = -std::sin(bin_theta_[b]);
-    bin_normal_y_[b] = std::cos(bin_theta_[b]);
+  // Each theta bin's line angle and normal, computed when the binning changes.
+  if (static_cast<int>(bin_theta_.size()) != theta_bins_ || bins_for_deg_ != o.theta_bin_deg) {
+    bins_for_deg_ = o.theta_bin_deg;
+    bin_theta_.resize(theta_bins_);
+    bin_normal_x_.resize(theta_bins_);
+    bin_normal_y_.resize(theta_bins_);
+    for (int b = 0; b < theta_bins_; ++b) {
+      bin_theta_[b] = normalizeLineAngle((-90.0 + (b + 0.5) * o.theta_bin_deg) * kDeg);
+      bin_normal_x_[b] = -std::sin(bin_theta_[b]);
+      bin_normal_y_[b] = std::cos(bin_theta_[b]);
+    }
   }
-  std::vector<ImageLine> cell_lines(n);
-  std::vector<Homogeneous> cell_h(n);
+  cell_lines_.resize(n);
+  std::vector<HoughCellLine>& cell_h = cell_lines_;
   for (size_t i = 0; i < n; ++i) {
     const int tb = static_cast<int>(cells_[i].key / intercept_bins_), cb = static_cast<int>(cells_[i].key % intercept_bins_);
-    cell_lines[i] = ImageLine{bin_theta_[tb], alpha_ + (cb + 0.5) * o.intercept_bin_px};
+    HoughCellLine& cell = cell_h[i];
+    cell.theta = bin_theta_[tb];
+    const double intercept = alpha_ + (cb + 0.5) * o.intercept_bin_px;
     // c from the intercept point: (0, intercept) or (intercept, 0).
-    const double a = bin_normal_x_[tb], b = bin_normal_y_[tb];
-    const double px = usesYIntercept(cell_lines[i].theta) ? 0.0 : cell_lines[i].intercept;
-    const double py = usesYIntercept(cell_lines[i].theta) ? cell_lines[i].intercept : 0.0;
-    cell_h[i] = Homogeneous{a, b, -(a * px + b * py)};
+    cell.a = bin_normal_x_[tb];
+    cell.b = bin_normal_y_[tb];
+    cell.c = usesYIntercept(cell.theta) ? -cell.b * intercept : -cell.a * intercept;
   }
   // Seeds: cells with two votes or more, strongest first (a single vote may still join a
   // stronger cell's window).
-  std::vector<size_t> order;
+  std::vector<uint32_t>& order = order_;
+  order.clear();
   for (size_t i = 0; i < n; ++i) {
-    if (cells_[i].votes >= 2) order.push_back(i);
+    if (cells_[i].votes >= 2) order.push_back(static_cast<uint32_t>(i));
   }
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
     return cells_[a].votes != cells_[b].votes ? cells_[a].votes > cells_[b].votes : cells_[a].key < cells_[b].key;
   });
 
   // Near-neighbour grouping: the strongest free cell gathers the free cells whose lines are
   // within the window of its own (so +-90 deg and the +45 deg intercept flip are no borders).
-  std::vector<char> used(n, 0);
+  std::vector<char>& used = used_;
+  used.assign(n, 0);
   const int window_bins = static_cast<int>(std::ceil(o.peak_angle_deg / o.theta_bin_deg));
   const double cos_peak = std::cos(o.peak_angle_deg * kDeg);
   const double cos_explained = std::cos(kExplainedTiltDeg * kDeg);
   int failures = 0, added = 0;
-  std::vector<size_t> members;
-  for (size_t seed_index : order) {
+  // Cells whose lines differ from a segment's by more than kExplainedTiltDeg cannot be
+  // explained by it: only the theta bins within that (and a bin) are visited.
+  const int explained_bins = static_cast<int>(std::ceil(kExplainedTiltDeg / o.theta_bin_deg)) + 1;
+  std::vector<uint32_t>& members = members_;
+  for (uint32_t seed_index : order) {
     if (used[seed_index]) continue;
     // Peaks come strongest first: once max_failed_peaks in a row lead nowhere, the rest are
     // chance alignments of pixels from different edges.
     if (static_cast<int>(found->size()) >= o.max_lines_per_object || failures >= o.max_failed_peaks) break;
-    const ImageLine& seed = cell_lines[seed_index];
-    const Homogeneous& hs = cell_h[seed_index];
+    const HoughCellLine& hs = cell_h[seed_index];
     // The foot of the object's centroid on the seed line: offsets are measured there.
     const double d0 = distance(hs, object.cx, object.cy);
     const double qx = object.cx - d0 * hs.a, qy = object.cy - d0 * hs.b;
@@ -400,7 +481,7 @@ int RleHough::extractLines(const ObjectRuns& indexed, const EdgeObject& object, 
         if (used[i]) continue;
         const double cosine = cell_h[i].a * hs.a + cell_h[i].b * hs.b;  // cos of the angle between normals
         if (std::fabs(cosine) < cos_peak) continue;
-        const double angle = normalizeLineAngle(cell_lines[i].theta - seed.theta);
+        const double angle = normalizeLineAngle(cell_h[i].theta - hs.theta);
         // Lines of opposite orientation have opposite normals: measure along the seed's.
         const double offset = distance(cell_h[i], qx, qy);
         const double signed_offset = cosine >= 0 ? offset : -offset;
@@ -421,18 +502,13 @@ int RleHough::extractLines(const ObjectRuns& indexed, const EdgeObject& object, 
     // Start from the vote-weighted mean of the group.
     const ImageLine start = lineThroughPointWithAngle(qx + weighted_offset / votes * hs.a,
                                                       qy + weighted_offset / votes * hs.b,
-                                                      seed.theta + weighted_angle / votes);
-    // A peak whose pixels lines already found have taken (a second peak of one of them, or
-    // chance votes across them) is not worth a refit.
-    PointSums unclaimed;
-    collect(indexed, homogeneous(start), o.fit_distance_px, nullptr, &unclaimed, nullptr);
-    if (unclaimed.n < 0.5 * o.min_line_length_px) {
-      ++failures;
+                                                      hs.theta + weighted_angle / votes);
+    refined_.clear();
+    if (!refine(indexed, start, o, edge_image, ridge_strength, &refined_)) {
+      ++failures;  // its pixels were taken
       continue;
     }
-    refined_.clear();
     ++stats->refinements;
-    refine(indexed, start, o, edge_image, ridge_strength, &refined_);
     if (refined_.empty()) {
       ++failures;
       continue;
@@ -462,18 +538,24 @@ int RleHough::extractLines(const ObjectRuns& indexed, const EdgeObject& object, 
       // meeting it at a corner crosses at an end, so the ends are left out.
       const double end_margin = std::min(2 * o.fit_distance_px, 0.25 * (range[1] - range[0]));
       const double inside[2] = {range[0] + end_margin, range[1] - end_margin};
-      for (size_t i = 0; i < n; ++i) {
-        const Homogeneous& hc = cell_h[i];
-        if (used[i] || std::fabs(hc.a * hl.a + hc.b * hl.b) < cos_explained) continue;
-        const double det = hl.a * hc.b - hl.b * hc.a;
-        if (std::fabs(det) < 1e-9) {  // parallel: near enough?
-          if (std::fabs(distance(hc, 0.5 * (line.x1 + line.x2), 0.5 * (line.y1 + line.y2))) <= o.fit_distance_px) used[i] = 1;
-          continue;
+      const int line_bin = std::min(theta_bins_ - 1, std::max(0, static_cast<int>((line.line.theta / kDeg + 90.0) / o.theta_bin_deg)));
+      const bool all_bins = 2 * explained_bins + 1 >= theta_bins_;
+      const int first_bin = all_bins ? 0 : -explained_bins, last_bin = all_bins ? theta_bins_ - 1 : explained_bins;
+      for (int db = first_bin; db <= last_bin; ++db) {
+        const int bin = all_bins ? db : ((line_bin + db) % theta_bins_ + theta_bins_) % theta_bins_;
+        for (int i = bucket_start[bin]; i < bucket_start[bin + 1]; ++i) {
+          const HoughCellLine& hc = cell_h[i];
+          if (used[i] || std::fabs(hc.a * hl.a + hc.b * hl.b) < cos_explained) continue;
+          const double det = hl.a * hc.b - hl.b * hc.a;
+          if (std::fabs(det) < 1e-9) {  // parallel: near enough?
+            if (std::fabs(distance(hc, 0.5 * (line.x1 + line.x2), 0.5 * (line.y1 + line.y2))) <= o.fit_distance_px) used[i] = 1;
+            continue;
+          }
+          // Where the cell's line crosses the segment's line.
+          const double x = (hl.b * hc.c - hc.b * hl.c) / det, y = (hc.a * hl.c - hl.a * hc.c) / det;
+          const double t = along(hl, x, y);
+          if (t >= inside[0] && t <= inside[1]) used[i] = 1;
         }
-        // Where the cell's line crosses the segment's line.
-        const double x = (hl.b * hc.c - hc.b * hl.c) / det, y = (hc.a * hl.c - hl.a * hc.c) / det;
-        const double t = along(hl, x, y);
-        if (t >= inside[0] && t <= inside[1]) used[i] = 1;
       }
     }
   }
