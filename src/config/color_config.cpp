@@ -1,5 +1,4 @@
 #include <algorithm>
-#include <fstream>
 #include <regex>
 #include <sstream>
 
@@ -8,14 +7,6 @@
 
 namespace rle_vision {
 namespace {
-
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open the file (check the path and permissions)");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
 
 std::string stripComment(const std::string& line) {
   const size_t hash = line.find('#');
@@ -141,7 +132,7 @@ std::vector<ColorClass> parseCmvisionColors(const std::string& text, const std::
 }
 
 std::vector<ColorClass> loadColorClasses(const std::string& path) {
-  const std::string text = readFile(path);
+  const std::string text = yaml_reader::readFile(path);
   return looksLikeCmvision(text) ? parseCmvisionColors(text, path) : parseColorClassesYaml(text, path);
 }
 

@@ -1,5 +1,3 @@
-#include <fstream>
-#include <sstream>
 
 #include "rle_vision/config_files.h"
 #include "yaml_reader.h"
@@ -27,14 +25,6 @@ bool boolean(const std::string& origin, const YAML::Node& map, const char* key, 
   } catch (const YAML::Exception&) {
     yaml_reader::fail(origin, node, std::string("'") + key + "' must be true or false");
   }
-}
-
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open the file (check the path and permissions)");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
 }
 
 }  // namespace
@@ -77,7 +67,7 @@ LandmarkOptions parseLandmarkParams(const std::string& text, const std::string& 
   return o;
 }
 
-LandmarkOptions loadLandmarkParams(const std::string& path) { return parseLandmarkParams(readFile(path), path); }
+LandmarkOptions loadLandmarkParams(const std::string& path) { return parseLandmarkParams(yaml_reader::readFile(path), path); }
 
 LearningOptions parseLearningParams(const std::string& text, const std::string& origin) {
   using namespace yaml_reader;
@@ -101,6 +91,6 @@ LearningOptions parseLearningParams(const std::string& text, const std::string& 
   return o;
 }
 
-LearningOptions loadLearningParams(const std::string& path) { return parseLearningParams(readFile(path), path); }
+LearningOptions loadLearningParams(const std::string& path) { return parseLearningParams(yaml_reader::readFile(path), path); }
 
 }  // namespace rle_vision

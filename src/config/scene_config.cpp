@@ -1,5 +1,3 @@
-#include <fstream>
-#include <sstream>
 
 #include "rle_vision/config_files.h"
 #include "yaml_reader.h"
@@ -85,12 +83,6 @@ SceneConfig parseSceneConfig(const std::string& source, const std::string& origi
   return c;
 }
 
-SceneConfig loadSceneConfig(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open the file (check the path and permissions)");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parseSceneConfig(buffer.str(), path);
-}
+SceneConfig loadSceneConfig(const std::string& path) { return parseSceneConfig(yaml_reader::readFile(path), path); }
 
 }  // namespace rle_vision

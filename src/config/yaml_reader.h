@@ -3,7 +3,9 @@
 
 #include <array>
 #include <cmath>
+#include <fstream>
 #include <initializer_list>
+#include <sstream>
 #include <string>
 
 #include <yaml-cpp/yaml.h>
@@ -19,6 +21,15 @@ namespace yaml_reader {
 
 [[noreturn]] inline void fail(const std::string& origin, const YAML::Node& node, const std::string& reason) {
   fail(origin, node.Mark().line + 1, reason);
+}
+
+// The whole file, or a ConfigError that names it.
+inline std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path + ": cannot open the file (check the path and permissions)");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
 }
 
 inline YAML::Node parse(const std::string& text, const std::string& origin) {

@@ -461,6 +461,8 @@ int RleHough::extractLines(const ObjectRuns& indexed, const EdgeObject& object, 
   // Cells whose lines differ from a segment's by more than kExplainedTiltDeg cannot be
   // explained by it: only the theta bins within that (and a bin) are visited.
   const int explained_bins = static_cast<int>(std::ceil(kExplainedTiltDeg / o.theta_bin_deg)) + 1;
+  const bool all_bins = 2 * explained_bins + 1 >= theta_bins_;
+  const int first_bin = all_bins ? 0 : -explained_bins, last_bin = all_bins ? theta_bins_ - 1 : explained_bins;
   std::vector<uint32_t>& members = members_;
   for (uint32_t seed_index : order) {
     if (used[seed_index]) continue;
@@ -539,8 +541,6 @@ int RleHough::extractLines(const ObjectRuns& indexed, const EdgeObject& object, 
       const double end_margin = std::min(2 * o.fit_distance_px, 0.25 * (range[1] - range[0]));
       const double inside[2] = {range[0] + end_margin, range[1] - end_margin};
       const int line_bin = std::min(theta_bins_ - 1, std::max(0, static_cast<int>((line.line.theta / kDeg + 90.0) / o.theta_bin_deg)));
-      const bool all_bins = 2 * explained_bins + 1 >= theta_bins_;
-      const int first_bin = all_bins ? 0 : -explained_bins, last_bin = all_bins ? theta_bins_ - 1 : explained_bins;
       for (int db = first_bin; db <= last_bin; ++db) {
         const int bin = all_bins ? db : ((line_bin + db) % theta_bins_ + theta_bins_) % theta_bins_;
         for (int i = bucket_start[bin]; i < bucket_start[bin + 1]; ++i) {

@@ -13,19 +13,11 @@ import rostest
 from rle_vision.msg import BlobArray, ColorRangeArray, SceneTruth
 
 sys.path.insert(0, __file__.rsplit('/', 1)[0])
-from truth_matching import whole_objects  # noqa: E402
+from truth_matching import whole_objects, iou  # noqa: E402
 
 RATE_HZ = 30.0
 END_S = 31.0
 FRINGE_PX = 2  # width of the mixed-pixel band along box edges
-
-
-def iou(a, b):
-    left, top = max(a[0], b[0]), max(a[1], b[1])
-    right, bottom = min(a[2], b[2]), min(a[3], b[3])
-    inter = max(0, right - left + 1) * max(0, bottom - top + 1)
-    area = lambda r: (r[2] - r[0] + 1) * (r[3] - r[1] + 1)  # noqa: E731
-    return inter / float(area(a) + area(b) - inter)
 
 
 class ColorLearningLoopTest(unittest.TestCase):

@@ -16,17 +16,9 @@ from rle_vision.msg import BlobArray, ObstacleArray, SceneTruth
 from sensor_msgs.msg import Imu
 
 sys.path.insert(0, __file__.rsplit('/', 1)[0])
-from truth_matching import clear_objects  # noqa: E402
+from truth_matching import clear_objects, iou  # noqa: E402
 
 FRAMES = 90  # 3 s: every phase of the gait
-
-
-def iou(a, b):
-    left, top = max(a[0], b[0]), max(a[1], b[1])
-    right, bottom = min(a[2], b[2]), min(a[3], b[3])
-    inter = max(0, right - left + 1) * max(0, bottom - top + 1)
-    area = lambda r: (r[2] - r[0] + 1) * (r[3] - r[1] + 1)  # noqa: E731
-    return inter / float(area(a) + area(b) - inter)
 
 
 def distance_to_footprint_edge(obj, x, y):

@@ -13,6 +13,15 @@ def nearest_blob(blobs, obj, max_distance):
     return best, best_d
 
 
+def iou(a, b):
+    """Intersection over union of two inclusive pixel boxes (left, top, right, bottom)."""
+    left, top = max(a[0], b[0]), max(a[1], b[1])
+    right, bottom = min(a[2], b[2]), min(a[3], b[3])
+    inter = max(0, right - left + 1) * max(0, bottom - top + 1)
+    area = lambda r: (r[2] - r[0] + 1) * (r[3] - r[1] + 1)  # noqa: E731
+    return inter / float(area(a) + area(b) - inter)
+
+
 def perimeter(o):
     return 2.0 * ((o.right - o.left + 1) + (o.bottom - o.top + 1))
 
