@@ -136,14 +136,10 @@ int main(int argc, char** argv) {
     }
     // Recall / precision within 2 deg and 2 px at the truth segment (the segments' own
     // accuracy, without the intercept's extrapolation).
-    const MatchScore a = scoreSegments(result.lines, truth, any_truth, 2.0, 2.0);
-    const MatchScore b = scoreSegments(toLines(segments), truth, any_truth, 2.0, 2.0);
-    ours.truths += a.truths; ours.found += a.found; ours.detections += a.detections; ours.correct += a.correct;
-    opencv.truths += b.truths; opencv.found += b.found; opencv.detections += b.detections; opencv.correct += b.correct;
-    const MatchScore c = scoreSegments(no_ridge_lines, truth, any_truth, 2.0, 2.0);
-    const MatchScore d = scoreSegments(paper_lines, truth, any_truth, 2.0, 2.0);
-    no_ridge.truths += c.truths; no_ridge.found += c.found; no_ridge.detections += c.detections; no_ridge.correct += c.correct;
-    paper_pairs.truths += d.truths; paper_pairs.found += d.found; paper_pairs.detections += d.detections; paper_pairs.correct += d.correct;
+    ours += scoreSegments(result.lines, truth, any_truth, 2.0, 2.0);
+    opencv += scoreSegments(toLines(segments), truth, any_truth, 2.0, 2.0);
+    no_ridge += scoreSegments(no_ridge_lines, truth, any_truth, 2.0, 2.0);
+    paper_pairs += scoreSegments(paper_lines, truth, any_truth, 2.0, 2.0);
     if (result.horizon.found && frame.horizon_visible) {
       horizon_err.push_back(lineAngleDifference(result.horizon.line.theta, frame.horizon.theta) * 180 / M_PI);
     }

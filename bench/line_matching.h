@@ -46,6 +46,13 @@ struct MatchScore {
   int detections = 0, correct = 0;   // detected lines, and those matching some truth
   double recall() const { return truths ? static_cast<double>(found) / truths : 1.0; }
   double precision() const { return detections ? static_cast<double>(correct) / detections : 1.0; }
+  MatchScore& operator+=(const MatchScore& o) {
+    truths += o.truths;
+    found += o.found;
+    detections += o.detections;
+    correct += o.correct;
+    return *this;
+  }
 };
 
 template <typename Detected>
