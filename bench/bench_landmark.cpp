@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
                    options.objects.gray_threshold);
     }, 15, 2));
     // What a 5x speed-up over HoughLinesP has to fit in (README): the first sampling round's
-    // votes with no peak refined; the Hough refining by least squares on the run pixels instead
+    // votes and seed ordering, no peak refined (no failed peaks allowed ends it there); the Hough refining by least squares on the run pixels instead
     // of the sub-pixel ridge fit; and with the paper's own pair count (eq. 4, margin 1, not 3).
     HoughOptions votes_only = options.hough, paper = options.hough;
     votes_only.max_failed_peaks = 0;
@@ -166,7 +166,7 @@ int main(int argc, char** argv) {
   const double votes_only = median(votes_only_ms), no_ridge_hough = median(no_ridge_ms), paper_hough = median(paper_pairs_ms);
   std::printf("  5x HoughLinesP means <= %.3f ms for the RLE and the Hough; of it, before any refinement:\n", houghp / 5);
   std::printf("  %-46s %8.3f ms\n", "  the RLE into edge objects", objects);
-  std::printf("  %-46s %8.3f ms\n", "  the first sampling round's votes alone", votes_only);
+  std::printf("  %-46s %8.3f ms\n", "  first sampling round: votes, seeds ordered", votes_only);
   std::printf("  %-46s %8.3f ms   (recall / precision %.3f / %.3f)\n", "the Hough without the sub-pixel ridge fit", no_ridge_hough,
               no_ridge.recall(), no_ridge.precision());
   std::printf("  %-46s %8.3f ms   (recall / precision %.3f / %.3f)\n", "the Hough with eq. 4's pairs at margin 1", paper_hough,
