@@ -5,6 +5,7 @@ horizon and obstacles as the live run (same seed, learning off)."""
 import os
 import signal
 import subprocess
+import sys
 import threading
 import time
 import unittest
@@ -13,6 +14,9 @@ import rosbag
 import rospy
 import rostest
 from rle_vision.msg import BlobArray, Horizon, LineArray, ObstacleArray
+
+sys.path.insert(0, __file__.rsplit('/', 1)[0])
+from truth_matching import store_by_stamp  # noqa: E402
 
 FRAMES = 60
 TOPICS = {'blobs': BlobArray, 'lines': LineArray, 'horizon': Horizon, 'obstacles': ObstacleArray}
@@ -54,13 +58,8 @@ class BagReplayTest(unittest.TestCase):
         self.outputs = {run: {name: {} for name in TOPICS} for run in ('live', 'replay')}
         for run, ns in (('live', 'camera'), ('replay', 'replay')):
             for name, msg_type in TOPICS.items():
-                rospy.Subscriber('/%s/%s' % (ns, name), msg_type, self.store(run, name), queue_size=200)
-
-    def store(self, run, name):
-        def callback(msg):
-            with self.lock:
-                self.outputs[run][name][msg.header.stamp] = msg
-        return callback
+                rospy.Subscriber('/%s/%s' % (ns, name), msg_type, store_by_stamp(self.lock, self.outputs[run][name]),
+                                 queue_size=200)
 
     def wait_for(self, condition, timeout_s):
         deadline = time.time() + timeout_s

@@ -2,6 +2,7 @@
 """rostest: cmvision.launch is a drop-in for cmvision. A subscriber typed exactly as cmvision's
 cmvision/Blobs (generated here from cmvision's message definition; the cmvision package itself
 is not needed) receives the blobs on /blobs, and they agree with rle_vision's own BlobArray."""
+import sys
 import threading
 import time
 import unittest
@@ -10,6 +11,9 @@ import genpy.dynamic
 import rospy
 import rostest
 from rle_vision.msg import BlobArray, CmvisionBlobs
+
+sys.path.insert(0, __file__.rsplit('/', 1)[0])
+from truth_matching import store_by_stamp  # noqa: E402
 
 # cmvision's msg/Blobs.msg and msg/Blob.msg, in the layout of a message's full text.
 CMVISION_BLOBS = """Header header
@@ -47,14 +51,8 @@ class CmvisionDropInTest(unittest.TestCase):
         self.assertEqual(cmvision_blobs_type._md5sum, CmvisionBlobs._md5sum)
         lock = threading.Lock()
         cm, native = {}, {}
-
-        def store(table):
-            def callback(msg):
-                with lock:
-                    table[msg.header.stamp] = msg
-            return callback
-        rospy.Subscriber('/blobs', cmvision_blobs_type, store(cm), queue_size=50)
-        rospy.Subscriber('/rle_blobs', BlobArray, store(native), queue_size=50)
+        rospy.Subscriber('/blobs', cmvision_blobs_type, store_by_stamp(lock, cm), queue_size=50)
+        rospy.Subscriber('/rle_blobs', BlobArray, store_by_stamp(lock, native), queue_size=50)
         deadline = time.time() + 30
         while time.time() < deadline:
             with lock:

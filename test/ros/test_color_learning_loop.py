@@ -13,7 +13,7 @@ import rostest
 from rle_vision.msg import BlobArray, ColorRangeArray, SceneTruth
 
 sys.path.insert(0, __file__.rsplit('/', 1)[0])
-from truth_matching import whole_objects, iou  # noqa: E402
+from truth_matching import whole_objects, iou, store_by_stamp  # noqa: E402
 
 RATE_HZ = 30.0
 END_S = 31.0
@@ -24,15 +24,9 @@ class ColorLearningLoopTest(unittest.TestCase):
     def setUp(self):
         self.lock = threading.Lock()
         self.truth, self.blobs, self.ranges = {}, {}, []
-        rospy.Subscriber('camera/ground_truth/scene', SceneTruth, self.store(self.truth), queue_size=500)
-        rospy.Subscriber('camera/blobs', BlobArray, self.store(self.blobs), queue_size=500)
+        rospy.Subscriber('camera/ground_truth/scene', SceneTruth, store_by_stamp(self.lock, self.truth), queue_size=500)
+        rospy.Subscriber('camera/blobs', BlobArray, store_by_stamp(self.lock, self.blobs), queue_size=500)
         rospy.Subscriber('camera/color_ranges', ColorRangeArray, self.on_ranges, queue_size=50)
-
-    def store(self, table):
-        def callback(msg):
-            with self.lock:
-                table[msg.header.stamp] = msg
-        return callback
 
     def on_ranges(self, msg):
         with self.lock:

@@ -16,7 +16,7 @@ from rle_vision.msg import BlobArray, ObstacleArray, SceneTruth
 from sensor_msgs.msg import Imu
 
 sys.path.insert(0, __file__.rsplit('/', 1)[0])
-from truth_matching import clear_objects, iou  # noqa: E402
+from truth_matching import clear_objects, iou, store_by_stamp  # noqa: E402
 
 FRAMES = 90  # 3 s: every phase of the gait
 
@@ -48,17 +48,11 @@ class GroundProjectionTest(unittest.TestCase):
     def setUp(self):
         self.lock = threading.Lock()
         self.truth, self.blobs, self.obstacles, self.attitude, self.imu = {}, {}, {}, {}, {}
-        rospy.Subscriber('camera/ground_truth/scene', SceneTruth, self.store(self.truth), queue_size=500)
-        rospy.Subscriber('camera/blobs', BlobArray, self.store(self.blobs), queue_size=500)
-        rospy.Subscriber('camera/obstacles', ObstacleArray, self.store(self.obstacles), queue_size=500)
-        rospy.Subscriber('camera/camera_attitude', QuaternionStamped, self.store(self.attitude), queue_size=500)
-        rospy.Subscriber('camera/camera_attitude_imu', Imu, self.store(self.imu), queue_size=500)
-
-    def store(self, table):
-        def callback(msg):
-            with self.lock:
-                table[msg.header.stamp] = msg
-        return callback
+        rospy.Subscriber('camera/ground_truth/scene', SceneTruth, store_by_stamp(self.lock, self.truth), queue_size=500)
+        rospy.Subscriber('camera/blobs', BlobArray, store_by_stamp(self.lock, self.blobs), queue_size=500)
+        rospy.Subscriber('camera/obstacles', ObstacleArray, store_by_stamp(self.lock, self.obstacles), queue_size=500)
+        rospy.Subscriber('camera/camera_attitude', QuaternionStamped, store_by_stamp(self.lock, self.attitude), queue_size=500)
+        rospy.Subscriber('camera/camera_attitude_imu', Imu, store_by_stamp(self.lock, self.imu), queue_size=500)
 
     def test_obstacles_lie_on_the_true_footprints(self):
         expect_horizon = rospy.get_param('~expect_horizon')

@@ -13,7 +13,7 @@ from rle_vision.msg import BlobArray, Horizon, LineArray, SceneTruth
 from visualization_msgs.msg import MarkerArray
 
 sys.path.insert(0, __file__.rsplit('/', 1)[0])
-from truth_matching import line_angle_difference, near_segment, segment_length  # noqa: E402
+from truth_matching import line_angle_difference, near_segment, segment_length, store_by_stamp  # noqa: E402
 
 FRAMES = 60
 
@@ -23,17 +23,11 @@ class LandmarkPipelineTest(unittest.TestCase):
         self.lock = threading.Lock()
         self.truth, self.horizons, self.lines, self.blobs = {}, {}, {}, {}
         self.markers = []
-        rospy.Subscriber('camera/ground_truth/scene', SceneTruth, self.store(self.truth), queue_size=300)
-        rospy.Subscriber('camera/horizon', Horizon, self.store(self.horizons), queue_size=300)
-        rospy.Subscriber('camera/lines', LineArray, self.store(self.lines), queue_size=300)
-        rospy.Subscriber('camera/blobs', BlobArray, self.store(self.blobs), queue_size=300)
+        rospy.Subscriber('camera/ground_truth/scene', SceneTruth, store_by_stamp(self.lock, self.truth), queue_size=300)
+        rospy.Subscriber('camera/horizon', Horizon, store_by_stamp(self.lock, self.horizons), queue_size=300)
+        rospy.Subscriber('camera/lines', LineArray, store_by_stamp(self.lock, self.lines), queue_size=300)
+        rospy.Subscriber('camera/blobs', BlobArray, store_by_stamp(self.lock, self.blobs), queue_size=300)
         rospy.Subscriber('camera/landmark/markers', MarkerArray, self.on_markers, queue_size=10)
-
-    def store(self, table):
-        def callback(msg):
-            with self.lock:
-                table[msg.header.stamp] = msg
-        return callback
 
     def on_markers(self, msg):
         with self.lock:

@@ -2,6 +2,15 @@
 import math
 
 
+def store_by_stamp(lock, table):
+    """A subscriber callback keeping each message in `table` under its header stamp, so that
+    outputs pair with the ground truth of the same frame."""
+    def callback(msg):
+        with lock:
+            table[msg.header.stamp] = msg
+    return callback
+
+
 def nearest_blob(blobs, obj, max_distance):
     best, best_d = None, max_distance
     for b in blobs.blobs:
