@@ -5,7 +5,7 @@ ARGS ?=
 JOBS ?= 2
 export JOBS
 
-.PHONY: all deps build demo test test-asan fuzz bench bench-latency screenshot clean
+.PHONY: all deps build demo test test-asan test-core test-install fuzz bench bench-latency screenshot clean
 
 all: build
 
@@ -23,6 +23,12 @@ test: build
 
 test-asan: deps
 	@scripts/test_asan.sh
+
+test-core: deps
+	@scripts/test_core_plain.sh
+
+test-install: build
+	@scripts/test_install_space.sh
 
 fuzz: deps
 	@scripts/fuzz.sh

@@ -96,8 +96,7 @@ int main(int argc, char** argv) {
     std::vector<DetectedLine> hough_lines;
     HoughStats hough_stats;
     hough_only_ms.push_back(bench::medianMs([&] {
-      rle_hough.detect(finder, edges.cols, edges.rows, options.hough, &hough_lines, &hough_stats, &edges,
-                   options.objects.gray_threshold);
+      rle_hough.detect(finder, edges, options.objects.gray_threshold, options.hough, &hough_lines, &hough_stats);
     }, 15, 2));
     // What a 5x speed-up over HoughLinesP has to fit in (README): the first sampling round's
     // votes and seed ordering, no peak refined (no failed peaks allowed ends it there); the Hough refining by least squares on the run pixels instead
@@ -106,16 +105,14 @@ int main(int argc, char** argv) {
     votes_only.max_failed_peaks = 0;
     paper.sampling_margin = 1;
     votes_only_ms.push_back(bench::medianMs([&] {
-      rle_hough.detect(finder, edges.cols, edges.rows, votes_only, &hough_lines, &hough_stats, &edges,
-                       options.objects.gray_threshold);
+      rle_hough.detect(finder, edges, options.objects.gray_threshold, votes_only, &hough_lines, &hough_stats);
     }, 15, 2));
     std::vector<DetectedLine> no_ridge_lines, paper_lines;
     no_ridge_ms.push_back(bench::medianMs([&] {
-      rle_hough.detect(finder, edges.cols, edges.rows, options.hough, &no_ridge_lines, &hough_stats);
+      rle_hough.detectOnRuns(finder, edges.cols, edges.rows, options.hough, &no_ridge_lines, &hough_stats);
     }, 15, 2));
     paper_pairs_ms.push_back(bench::medianMs([&] {
-      rle_hough.detect(finder, edges.cols, edges.rows, paper, &paper_lines, &hough_stats, &edges,
-                       options.objects.gray_threshold);
+      rle_hough.detect(finder, edges, options.objects.gray_threshold, paper, &paper_lines, &hough_stats);
     }, 15, 2));
     pairs_rle += result.hough.sample_pairs;
     pairs_global += result.hough.global_sample_pairs;

@@ -4,7 +4,8 @@
 
 #include <string>
 
-#include "rle_vision/config_files.h"
+#include "rle_vision/color_config.h"
+#include "rle_vision/scene_file.h"
 #include "rle_vision/scene_simulator.h"
 
 namespace rle_vision {

@@ -100,7 +100,7 @@ def main():
         with open(out_path) as f:
             results = json.load(f)
     results['runs'] = [r for r in results.get('runs', []) if r.get('label') != label] + [run]
-    if label == '640x480':  # the headline figures (DESIGN.md §5's target is at 640x480 30 Hz)
+    if label == '640x480':  # the headline figures (docs/DESIGN.md §5's target is at 640x480 30 Hz)
         for key in ('p50_ms', 'p99_ms', 'max_ms', 'tracker_drops', 'landmark_skips'):
             results[key] = run[key]
     with open(out_path, 'w') as f:

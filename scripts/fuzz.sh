@@ -8,7 +8,7 @@ source "$(dirname "$0")/env.sh"
 seconds="${FUZZ_SECONDS:-60}"
 out="$ROOT/.ws-fuzz"
 mkdir -p "$out/obj" "$out/artifacts"
-flags=(-std=c++17 -O1 -g -fno-omit-frame-pointer -DRLE_VISION_NO_MULTIVERSION -I"$ROOT/include"
+flags=(-std=c++17 -O1 -g -fno-omit-frame-pointer -DRLE_VISION_NO_MULTIVERSION -DRLE_VISION_SOURCE_DIR="\"$ROOT\"" -I"$ROOT/include"
        -I/usr/include/opencv4 -I/usr/include/eigen3 -fsanitize=address,undefined -fno-sanitize-recover=all)
 libs=(-lopencv_core -lopencv_imgproc -lopencv_calib3d -lyaml-cpp -lpthread)
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Builds and runs every test (gtest for the core, rostest for nodelets and launch files), then
-# prints "N passed, M failed" as the last line; exits non-zero on any failure.
+# Builds and runs every test (gtest for the core, rostest for nodelets and launch files, the code
+# shape check, the core built without ROS, the install space), then prints "N passed,
+# M failed" as the last line; exits non-zero on any failure.
 set -uo pipefail
 source "$(dirname "$0")/env.sh"
 source_workspace
@@ -16,4 +17,7 @@ fi
 if ! catkin_make run_tests -j1; then
   extra+=("catkin_make run_tests exited with an error (see above)")
 fi
+# The core built on its own with plain CMake (no ROS in it), and the package's install space.
+JUNIT_DIR="$results/checks" "$ROOT/scripts/test_core_plain.sh" || true
+JUNIT_DIR="$results/checks" "$ROOT/scripts/test_install_space.sh" || true
 exec python3 "$ROOT/scripts/summarize_tests.py" "$results" "${extra[@]}"

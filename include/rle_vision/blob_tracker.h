@@ -37,6 +37,10 @@ class BlobTracker {
   size_t trackCount() const { return tracks_.size(); }
 
  private:
+  void scoreCandidates(const std::vector<Region>& regions, double stamp_s);
+  void assign(size_t region_count);
+  void emitBlobs(const std::vector<Region>& regions, double stamp_s, std::vector<TrackedBlob>* blobs);
+  void ageTracks(size_t old_track_count);
   struct Track {
     uint32_t id;
     int label;

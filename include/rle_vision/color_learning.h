@@ -37,18 +37,11 @@ bool colorStats(const std::vector<Channels>& pixels, ColorStats* stats, double o
 std::vector<std::vector<int>> colorModes(const std::vector<Channels>& pixels, double radius, size_t min_size,
                                          int max_modes = 4);
 
+// The parameters (blend, match_gate, max_sigma, mode_radius, ...; learning_* in files and ROS)
+// are the LEARNING group of landmark_params.def, with their defaults and meanings.
 struct LearningOptions {
-  double blend = 0.2;               // weight of a new measurement in a class's range (0..1]
-  double mode_radius = 20;          // a colour mode holds the pixels this close (every channel) to its mean
-  double match_gate = 45;           // largest distance between a class's centre and a measurement's mean
-  double max_sigma = 25;            // a measurement spreading more than this on a channel is mixed colours
-  uint32_t min_region_px = 60;      // smaller regions are not measured
-  double shrink_px = 2;             // the region is eroded by this much (edge pixels mix colours)
-  double horizon_margin_px = 3;     // regions within this of the horizon (or above it) are not obstacles
-  double stale_after_s = 5;         // a class not measured for this long drifts back to its configured range
-  bool create_classes = false;      // unmatched, persistent large regions become classes learned_N
-  int persist_frames = 15;          // frames an unmatched colour must be seen to become a class
-  uint32_t min_new_class_px = 400;  // and its size
+#define RLE_LEARNING_PARAM(key, member, type, default_value, min, max, description) type member = default_value;
+#include "rle_vision/landmark_params.def"
 };
 
 // Reason the options are unusable, or "" when they are fine.
@@ -73,6 +66,18 @@ class ColorLearner {
   // measured), then any created classes.
   const std::vector<ColorClass>& classes() const { return classes_; }
 
+  // Why a measurement changed nothing.
+  enum class Rejection {
+    kNone,           // applied
+    kTooSmall,       // the region holds fewer than min_region_px pixels
+    kAboveHorizon,   // at or above the horizon: not an obstacle
+    kMixedColours,   // a channel spreads more than max_sigma
+    kBackground,     // the ground's or the sky's colour
+    kNoClass,        // farther than match_gate from every class
+    kOverlapsGround, // the class's range would overlap the ground's colour
+    kOverlapsSky,    // ... the sky's
+    kOverlapsClass,  // ... another class's (conflicting_class)
+  };
   // What the last update saw, for tests and debug views.
   // One colour mode of one region.
   struct Measurement {
@@ -80,7 +85,9 @@ class ColorLearner {
     cv::Rect pixels_box;                // where the mode's pixels lie
     ColorStats stats[kNumColorSpaces];  // per space used by the classes
     int matched_class = -1;             // -1: none
-    std::string rejected;               // why it changed nothing ("" when it was applied)
+    Rejection rejection = Rejection::kNone;
+    int conflicting_class = -1;         // with kOverlapsClass
+    std::string rejected;               // the rejection in words ("" when it was applied)
   };
   const std::vector<Measurement>& lastMeasurements() const { return measurements_; }
   // The ground (below the horizon) and sky (above it) measured in the last update, per space.
@@ -99,11 +106,34 @@ class ColorLearner {
     double last_seen_s = 0;
   };
 
+  // Which colour spaces the classes (and class creation) use.
+  struct Spaces {
+    bool used[kNumColorSpaces] = {false, false, false};
+  };
+  // A region's pixels: positions and YUV colours.
+  struct RegionPixels {
+    std::vector<cv::Point> positions;
+    std::vector<Channels> yuv;
+  };
+
+  Spaces usedSpaces() const;
   void measureBackground(const cv::Mat& bgr, const HorizonEstimate& horizon, const std::vector<cv::Rect>& objects,
-                         const bool* used_spaces);
-  bool apply(int k, const ColorStats& measured, double stamp_s, std::string* rejected);
+                         const Spaces& spaces);
+  bool regionPixels(const cv::Mat& bgr, const std::vector<cv::Point2d>& region, RegionPixels* pixels) const;
+  void measureRegion(const cv::Mat& bgr, const std::vector<const DetectedLine*>& lines, const HorizonEstimate& horizon,
+                     const Spaces& spaces, std::vector<std::vector<ColorStats>>* matched);
+  void measureMode(const cv::Mat& bgr, const RegionPixels& pixels, const std::vector<int>& mode,
+                   const HorizonEstimate& horizon, const Spaces& spaces, Measurement* m);
+  int nearestClass(const Measurement& m) const;
+  void applyMatched(const std::vector<std::vector<ColorStats>>& matched, double stamp_s);
+  Rejection apply(int k, const ColorStats& measured, double stamp_s, int* conflicting_class);
   bool driftBack(double stamp_s);
+  void createClasses(double stamp_s);
+  void addClass(const Candidate& candidate, double stamp_s);
+  bool updateClassSet();
   bool publishable(int k, Channels* lo, Channels* hi) const;
+  bool isBackground(ColorSpace space, const ColorStats& stats) const;
+  void reject(Measurement* m, Rejection why, int conflicting_class = -1) const;
 
   std::vector<ColorClass> configured_, classes_;
   std::vector<ClassState> state_;

@@ -15,12 +15,12 @@ namespace rle_vision {
 enum EdgeClass : uint8_t { kNoEdge = 0, kGrayEdge = 1, kSharpEdge = 2 };
 
 // Edge objects are the connected edges; with `thin`, an object holds the crests of its edges.
+// The parameters (gray_threshold, sharp_threshold, min_object_px, thin) are the OBJECTS group
+// of landmark_params.def, with their defaults and meanings.
 struct EdgeObjectOptions {
-  uint8_t gray_threshold = 60;    // edge values >= this (and below sharp) are the gray band
-  uint8_t sharp_threshold = 200;  // edge values >= this are sharp edges
-  uint32_t min_object_px = 20;    // smaller edge objects are noise
+#define RLE_OBJECTS_PARAM(key, member, type, default_value, min, max, description) type member = default_value;
+#include "rle_vision/landmark_params.def"
   Connectivity connectivity = Connectivity::Eight;
-  bool thin = true;  // run-length encode only the ridge crests (see thinEdges)
 };
 
 struct EdgeObject {
@@ -50,6 +50,11 @@ class EdgeObjectFinder {
   uint64_t runCount() const { return held_runs_; }
 
  private:
+  void encodeEdges(const cv::Mat& edges, uint8_t gray, uint8_t sharp, std::vector<Run>* runs);
+  void crestRuns(const cv::Mat& edges, uint8_t gray, uint8_t sharp);
+  void collectObjects(const std::vector<Run>& held, uint32_t min_object_px);
+  void groupRuns(const std::vector<Run>& held);
+
   std::vector<uint8_t> labels_;
   cv::Mat thin_;
   std::vector<Run> runs_, crest_runs_, object_runs_;

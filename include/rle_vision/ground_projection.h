@@ -1,6 +1,7 @@
 // Where things are: blobs placed on the flat ground (z = 0 of the base frame) through the camera
-// model and the camera's pose, and the camera's attitude from the horizon when no joint angles
-// are known (the paper's "coordinate transformation based on the fact that the ground is level").
+// model and the camera's pose (the paper's "coordinate transformation based on the fact that the
+// ground is level"); attitude_filter.h gives that pose from the horizon when no joint angles
+// are known.
 #pragma once
 
 #include <string>
@@ -8,24 +9,10 @@
 
 #include <Eigen/Geometry>
 
+#include "rle_vision/camera_intrinsics.h"
 #include "rle_vision/camera_model.h"
-#include "rle_vision/horizon.h"
 
 namespace rle_vision {
-
-// A camera_info's intrinsics with its distortion model (ROS names).
-struct CameraIntrinsics {
-  PinholeCamera pinhole;
-  std::string distortion_model;   // "plumb_bob", "rational_polynomial", "equidistant" or "" (none)
-  std::vector<double> distortion;  // D; all zero (or empty) means none
-};
-
-// Reason the intrinsics cannot be used, or "" when they are fine.
-std::string validateIntrinsics(const CameraIntrinsics& intrinsics);
-
-// The ideal (undistorted) pixel seen at a raw image pixel. Returns false when the undistortion
-// does not converge to a finite point.
-bool undistortPixel(const CameraIntrinsics& intrinsics, double u, double v, double* u_ideal, double* v_ideal);
 
 // Where the ray through an ideal pixel meets the ground z = 0. `base_from_optical` is the
 // camera's optical frame in the base frame. False (and `reason` says why) when the ray points
@@ -72,42 +59,5 @@ bool contactMayBeHidden(const std::vector<BlobOutline>& blobs, size_t index, int
 // The camera's optical frame in the base frame for a camera body (REP 103: x forward, z up)
 // with this roll, pitch (positive nose down) and yaw, `height_m` above the base frame's origin.
 Eigen::Isometry3d baseFromOptical(double roll, double pitch, double yaw, double height_m);
-
-struct AttitudeFilterOptions {
-  double smoothing = 0.1;        // 0: every horizon taken as it is; towards 1: smoother, slower
-  double min_confidence = 0.5;   // horizons below this confidence are ignored
-  double max_jump_deg = 10;      // a horizon this far from the prediction is a glitch, ignored...
-  int max_rejected = 5;          // ...unless this many come in a row (then the filter restarts)
-  double max_hold_s = 1.0;       // without a usable horizon for this long the attitude is lost
-};
-
-// Reason the options are unusable, or "" when they are fine.
-std::string validateAttitudeFilterOptions(const AttitudeFilterOptions& options);
-
-// Camera roll and pitch from successive horizons: an alpha-beta filter per angle (it follows a
-// swaying gait without the lag plain averaging has), gated against glitches.
-class AttitudeFilter {
- public:
-  explicit AttitudeFilter(const AttitudeFilterOptions& options = AttitudeFilterOptions()) : options_(options) {}
-  void setOptions(const AttitudeFilterOptions& options) { options_ = options; }
-
-  enum class Outcome { kAccepted, kLowConfidence, kJump, kNoHorizon };
-  // One horizon (its roll and pitch, rad) at `stamp_s`. Out-of-order stamps are ignored.
-  Outcome update(bool found, double roll, double pitch, double confidence, double stamp_s);
-
-  bool valid(double stamp_s) const;  // an attitude exists and is not older than max_hold_s
-  double roll() const { return roll_; }
-  double pitch() const { return pitch_; }
-  double rollRate() const { return roll_rate_; }
-  double pitchRate() const { return pitch_rate_; }
-  double lastStamp() const { return last_stamp_s_; }
-
- private:
-  AttitudeFilterOptions options_;
-  bool initialised_ = false;
-  double roll_ = 0, pitch_ = 0, roll_rate_ = 0, pitch_rate_ = 0;
-  double last_stamp_s_ = 0, last_accepted_s_ = 0;
-  int rejected_in_a_row_ = 0;
-};
 
 }  // namespace rle_vision

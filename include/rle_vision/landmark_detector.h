@@ -8,14 +8,16 @@
 
 #include "rle_vision/camera_model.h"
 #include "rle_vision/edge_objects.h"
-#include "rle_vision/horizon.h"
+#include "rle_vision/horizon_finder.h"
 #include "rle_vision/rle_hough.h"
 #include "rle_vision/sobel5.h"
 
 namespace rle_vision {
 
+// edge_gain (the EDGE group of landmark_params.def) and the steps' own options.
 struct LandmarkOptions {
-  double edge_gain = 2.0;  // Sobel scaling: a step of height h in one channel gives 2 h
+#define RLE_EDGE_PARAM(key, member, type, default_value, min, max, description) type member = default_value;
+#include "rle_vision/landmark_params.def"
   EdgeObjectOptions objects;
   HoughOptions hough;
   HorizonOptions horizon;

@@ -1,4 +1,4 @@
-// Straight lines in the paper's parameter space (DESIGN.md section 3), image coordinates
+// Straight lines in the paper's parameter space (docs/DESIGN.md section 3), image coordinates
 // (x right, y down, pixel centres at integer coordinates).
 //
 // theta: angle of the line to the image horizontal, in (-pi/2, pi/2]; the line's direction

@@ -9,9 +9,9 @@
 #include "rle_vision/blob_tracker.h"
 #include "rle_vision/color_learning.h"
 #include "rle_vision/color_table.h"
-#include "rle_vision/horizon.h"
+#include "rle_vision/horizon_finder.h"
 #include "rle_vision/pixel_format.h"
-#include "rle_vision/rle_hough.h"
+#include "rle_vision/detected_line.h"
 
 namespace rle_vision {
 

@@ -24,20 +24,30 @@ struct Region {
   int32_t root_run = -1;  // index of the region's root run (its first run in row-major order)
 };
 
+// Which touching runs join one region.
+enum class Joining {
+  kSameLabel,  // runs of equal label (colour regions)
+  kAnyLabel,   // runs of any non-zero labels; a region carries its first run's label (edge objects)
+};
+
 // Groups runs into regions. Holds scratch buffers; reuse one instance per thread.
 class RegionBuilder {
  public:
-  // `runs` and `row_starts` as encodeLabelRows() makes them. Runs of equal label that touch
-  // (share an edge with Four, an edge or a corner with Eight) on adjacent rows join one region.
-  // On return each run's parent is its region's root run. Regions come in row-major order of
-  // their first pixel. `min_area_by_label[label]` (if that index exists) drops smaller regions.
-  // With `join_labels`, touching runs join whatever their (non-zero) labels; a region then
-  // carries its first run's label.
-  void build(std::vector<Run>* runs, const std::vector<int32_t>& row_starts,
-             Connectivity connectivity, const std::vector<uint32_t>& min_area_by_label,
-             std::vector<Region>* regions, bool join_labels = false);
+  // `runs` and `row_starts` as encodeLabelRows() makes them. Runs that touch (share an edge
+  // with Four, an edge or a corner with Eight) on adjacent rows join one region as `joining`
+  // says. On return each run's parent is its region's root run. Regions come in row-major
+  // order of their first pixel. `min_area_by_label[label]` (if that index exists) drops
+  // smaller regions.
+  void build(std::vector<Run>* runs, const std::vector<int32_t>& row_starts, Connectivity connectivity,
+             const std::vector<uint32_t>& min_area_by_label, std::vector<Region>* regions,
+             Joining joining = Joining::kSameLabel);
 
  private:
+  void accumulateMoments(std::vector<Run>* runs);
+  void emitRegions(const std::vector<Run>& runs, const std::vector<uint32_t>& min_area_by_label,
+                   std::vector<Region>* regions);
+  void findBottoms(const std::vector<Run>& runs, std::vector<Region>* regions) const;
+
   struct Moments {
     int64_t area, sum_x, sum_y, sum_xx, sum_yy, sum_xy;
     int32_t left, top, right, bottom;

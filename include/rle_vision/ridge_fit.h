@@ -3,6 +3,7 @@
 // points; the stretches where the ridge follows the fitted line, split where they bend.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -30,9 +31,26 @@ struct RidgeFit {
   PointSums sums;                         // its ridge points (for merging lines)
 };
 
-// Refines `line` on the CV_8UC1 `edges` between positions t0 and t1 along it (t = x cos theta
-// + y sin theta): the straight stretches of ridge along it at least `min_length` long.
-void fitRidge(const cv::Mat& edges, const ImageLine& line, double t0, double t1, const RidgeFitOptions& options,
-              double min_length, std::vector<RidgeFit>* fits);
+// Refines lines on an edge image. Holds scratch buffers; reuse one instance per thread.
+class RidgeFitter {
+ public:
+  // Refines `line` on the CV_8UC1 `edges` between positions t0 and t1 along it (t = x cos
+  // theta + y sin theta): the straight stretches of ridge along it at least `min_length` long.
+  void fit(const cv::Mat& edges, const ImageLine& line, double t0, double t1, const RidgeFitOptions& options,
+           double min_length, std::vector<RidgeFit>* fits);
+
+ private:
+  struct RidgePoint {
+    double x, y, t;
+  };
+  void ridgePoints(const cv::Mat& edges, const ImageLine& line, double t0, double t1, const RidgeFitOptions& o);
+  void fitRobustly(const ImageLine& start, const RidgeFitOptions& o, double min_length, std::vector<RidgeFit>* fits);
+  void splitAndFit(size_t first, size_t last, const RidgeFitOptions& o, double min_length, int depth,
+                   std::vector<RidgeFit>* fits);
+
+  std::vector<double> profile_;
+  std::vector<RidgePoint> points_, inliers_;
+  std::vector<double> residuals_, sorted_, deviation_;
+};
 
 }  // namespace rle_vision

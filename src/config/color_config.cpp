@@ -2,7 +2,7 @@
 #include <regex>
 #include <sstream>
 
-#include "rle_vision/config_files.h"
+#include "rle_vision/color_config.h"
 #include "yaml_reader.h"
 
 namespace rle_vision {

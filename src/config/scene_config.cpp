@@ -1,5 +1,5 @@
 
-#include "rle_vision/config_files.h"
+#include "rle_vision/scene_file.h"
 #include "yaml_reader.h"
 
 namespace rle_vision {

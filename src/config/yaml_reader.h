@@ -10,7 +10,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "rle_vision/config_files.h"
+#include "rle_vision/config_error.h"
 
 namespace rle_vision {
 namespace yaml_reader {
@@ -41,21 +41,24 @@ inline YAML::Node parse(const std::string& text, const std::string& origin) {
 }
 
 // Rejects keys other than `allowed`: a misspelt parameter must not be silently ignored.
-inline void checkKeys(const std::string& origin, const YAML::Node& map,
-                      std::initializer_list<const char*> allowed) {
+template <typename Names>
+void checkKeys(const std::string& origin, const YAML::Node& map, const Names& allowed) {
   if (!map.IsMap()) fail(origin, map, "expected a mapping of key: value");
   for (const auto& entry : map) {
     // YAML allows lists and maps as keys ("? [a, b]: 1"); no parameter is named like that.
     if (!entry.first.IsScalar()) fail(origin, entry.first, "a key must be a plain name, not a list or mapping");
     const std::string key = entry.first.as<std::string>();
     bool known = false;
-    for (const char* a : allowed) known = known || key == a;
+    for (const auto& a : allowed) known = known || key == a;
     if (!known) {
       std::string list;
-      for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
+      for (const auto& a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
       fail(origin, entry.first, "unknown key '" + key + "' (known keys: " + list + ")");
     }
   }
+}
+inline void checkKeys(const std::string& origin, const YAML::Node& map, std::initializer_list<const char*> allowed) {
+  checkKeys<std::initializer_list<const char*>>(origin, map, allowed);
 }
 
 inline double number(const std::string& origin, const YAML::Node& map, const char* key,

@@ -17,7 +17,14 @@ void BlobTracker::update(const std::vector<Region>& regions, double stamp_s,
   has_stamp_ = true;
   last_stamp_s_ = stamp_s;
   ++frame_;
+  scoreCandidates(regions, stamp_s);
+  assign(regions.size());
+  const size_t old_track_count = tracks_.size();
+  emitBlobs(regions, stamp_s, blobs);
+  ageTracks(old_track_count);
+}
 
+void BlobTracker::scoreCandidates(const std::vector<Region>& regions, double stamp_s) {
   // Score every same-class (track, region) pair inside the gates.
   candidates_.clear();
   const double log_max_ratio = std::log(std::max(options_.max_area_ratio, 1.0 + 1e-9));
@@ -38,20 +45,24 @@ void BlobTracker::update(const std::vector<Region>& regions, double stamp_s,
       candidates_.push_back({distance / gate + 0.5 * log_ratio / log_max_ratio, t, r});
     }
   }
+}
+
+void BlobTracker::assign(size_t region_count) {
   // Greedy global assignment, cheapest pair first (optimal for well separated objects).
   std::sort(candidates_.begin(), candidates_.end(),
             [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
-  region_track_.assign(regions.size(), -1);
+  region_track_.assign(region_count, -1);
   track_matched_.assign(tracks_.size(), 0);
   for (const Candidate& c : candidates_) {
     if (region_track_[c.region] >= 0 || track_matched_[c.track]) continue;
     region_track_[c.region] = c.track;
     track_matched_[c.track] = 1;
   }
+}
 
+void BlobTracker::emitBlobs(const std::vector<Region>& regions, double stamp_s, std::vector<TrackedBlob>* blobs) {
   blobs->clear();
   blobs->reserve(regions.size());
-  const size_t old_track_count = tracks_.size();
   for (int r = 0; r < static_cast<int>(regions.size()); ++r) {
     const Region& region = regions[r];
     TrackedBlob blob;
@@ -84,7 +95,9 @@ void BlobTracker::update(const std::vector<Region>& regions, double stamp_s,
     }
     blobs->push_back(blob);
   }
+}
 
+void BlobTracker::ageTracks(size_t old_track_count) {
   // Age the tracks not seen this frame; forget those lost for too long.
   size_t kept = 0;
   for (size_t t = 0; t < tracks_.size(); ++t) {

@@ -6,6 +6,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "param_range.h"
 #include "rle_vision/color_convert.h"
 
 namespace rle_vision {
@@ -136,13 +137,12 @@ std::vector<std::vector<int>> colorModes(const std::vector<Channels>& pixels, do
 }
 
 std::string validateLearningOptions(const LearningOptions& o) {
-  if (!std::isfinite(o.blend) || o.blend <= 0 || o.blend > 1) return "learning blend must be in (0, 1]";
-  if (!std::isfinite(o.mode_radius) || o.mode_radius <= 0) return "mode_radius must be a finite number > 0";
-  for (double v : {o.match_gate, o.max_sigma, o.shrink_px, o.horizon_margin_px, o.stale_after_s}) {
-    if (!std::isfinite(v) || v < 0) return "learning gates, margins and times must be finite numbers >= 0";
-  }
-  if (o.persist_frames < 1) return "persist_frames must be >= 1";
-  return "";
+  std::string problem;
+  // Every parameter within the limits landmark_params.def gives it.
+#define RLE_LEARNING_PARAM(key, member, type, default_value, min, max, description) \
+  if (problem.empty()) problem = outOfRange(#key, o.member, min, max);
+#include "rle_vision/landmark_params.def"
+  return problem;
 }
 
 ColorLearner::ColorLearner(std::vector<ColorClass> configured, const LearningOptions& options)
@@ -184,7 +184,7 @@ const ColorStats* ColorLearner::skyStats(ColorSpace space) const {
 }
 
 void ColorLearner::measureBackground(const cv::Mat& bgr, const HorizonEstimate& horizon,
-                                     const std::vector<cv::Rect>& objects, const bool* used) {
+                                     const std::vector<cv::Rect>& objects, const Spaces& spaces) {
   // A sparse grid of pixels away from every edge object: below the horizon (ground) and
   // above it (sky); without a horizon, everything is ground.
   std::vector<cv::Point> ground, sky;
@@ -203,7 +203,7 @@ void ColorLearner::measureBackground(const cv::Mat& bgr, const HorizonEstimate& 
   }
   for (int s = 0; s < kNumColorSpaces; ++s) {
     have_ground_[s] = have_sky_[s] = false;
-    if (!used[s]) continue;
+    if (!spaces.used[s]) continue;
     const ColorSpace space = static_cast<ColorSpace>(s);
     auto measure = [&](const std::vector<cv::Point>& points, ColorStats* out) {
       if (points.size() < 50) return false;
@@ -231,7 +231,31 @@ bool ColorLearner::publishable(int k, Channels* lo, Channels* hi) const {
   return *lo != configured_[k].min || *hi != configured_[k].max;
 }
 
-bool ColorLearner::apply(int k, const ColorStats& measured, double stamp_s, std::string* rejected) {
+bool ColorLearner::isBackground(ColorSpace space, const ColorStats& stats) const {
+  const ColorStats* g = groundStats(space);
+  const ColorStats* sky = skyStats(space);
+  return (g && overlaps(stats, *g)) || (sky && overlaps(stats, *sky));
+}
+
+void ColorLearner::reject(Measurement* m, Rejection why, int conflicting_class) const {
+  m->rejection = why;
+  m->conflicting_class = conflicting_class;
+  switch (why) {
+    case Rejection::kNone: m->rejected.clear(); break;
+    case Rejection::kTooSmall: m->rejected = "too small"; break;
+    case Rejection::kAboveHorizon: m->rejected = "at or above the horizon"; break;
+    case Rejection::kMixedColours: m->rejected = "mixed colours (one channel spreads more than max_sigma)"; break;
+    case Rejection::kBackground: m->rejected = "the ground's or the sky's colour"; break;
+    case Rejection::kNoClass: m->rejected = "matches no class"; break;
+    case Rejection::kOverlapsGround: m->rejected = "the range would overlap the ground's colour"; break;
+    case Rejection::kOverlapsSky: m->rejected = "the range would overlap the sky's colour"; break;
+    case Rejection::kOverlapsClass:
+      m->rejected = "the range would overlap class '" + configured_[conflicting_class].name + "'";
+      break;
+  }
+}
+
+ColorLearner::Rejection ColorLearner::apply(int k, const ColorStats& measured, double stamp_s, int* conflicting_class) {
   const ColorSpace space = configured_[k].space;
   ClassState next = state_[k];
   for (int ch = 0; ch < 3; ++ch) {
@@ -245,16 +269,10 @@ bool ColorLearner::apply(int k, const ColorStats& measured, double stamp_s, std:
     blended.hi[ch] = saturateToByte(static_cast<int>(std::ceil(next.hi[ch])));
   }
   if (const ColorStats* g = groundStats(space)) {
-    if (overlaps(blended, *g)) {
-      *rejected = "the range would overlap the ground's colour";
-      return false;
-    }
+    if (overlaps(blended, *g)) return Rejection::kOverlapsGround;
   }
-  if (const ColorStats* s = skyStats(space)) {
-    if (overlaps(blended, *s)) {
-      *rejected = "the range would overlap the sky's colour";
-      return false;
-    }
+  if (const ColorStats* sky = skyStats(space)) {
+    if (overlaps(blended, *sky)) return Rejection::kOverlapsSky;
   }
   // Nor over another class of the same space: two classes would claim the same pixels.
   for (size_t j = 0; j < configured_.size(); ++j) {
@@ -265,13 +283,13 @@ bool ColorLearner::apply(int k, const ColorStats& measured, double stamp_s, std:
       other.hi[ch] = saturateToByte(static_cast<int>(std::ceil(state_[j].hi[ch])));
     }
     if (overlaps(blended, other)) {
-      *rejected = "the range would overlap class '" + configured_[j].name + "'";
-      return false;
+      *conflicting_class = static_cast<int>(j);
+      return Rejection::kOverlapsClass;
     }
   }
   next.last_measured_s = stamp_s;
   state_[k] = next;
-  return true;
+  return Rejection::kNone;
 }
 
 bool ColorLearner::driftBack(double stamp_s) {
@@ -288,134 +306,149 @@ bool ColorLearner::driftBack(double stamp_s) {
   return moved;
 }
 
+ColorLearner::Spaces ColorLearner::usedSpaces() const {
+  Spaces spaces;
+  for (const ColorClass& c : configured_) spaces.used[static_cast<int>(c.space)] = true;
+  spaces.used[static_cast<int>(ColorSpace::YUV)] = spaces.used[static_cast<int>(ColorSpace::YUV)] || options_.create_classes;
+  return spaces;
+}
+
 bool ColorLearner::update(const cv::Mat& bgr, const LandmarkResult& landmarks, const EdgeObjectFinder& objects,
                           double stamp_s) {
   measurements_.clear();
   if (bgr.empty() || bgr.type() != CV_8UC3) return false;
   const cv::Rect image(0, 0, bgr.cols, bgr.rows);
-
-  // Regions: the lines of each edge object.
-  std::map<int, std::vector<const DetectedLine*>> by_object;
-  for (const DetectedLine& l : landmarks.lines) by_object[l.object].push_back(&l);
+  // The background away from every edge object.
   std::vector<cv::Rect> object_boxes;
   for (const EdgeObject& o : objects.objects()) {
     object_boxes.push_back(cv::Rect(o.left - 3, o.top - 3, o.right - o.left + 7, o.bottom - o.top + 7) & image);
   }
-  // Which spaces the classes use.
-  bool used[kNumColorSpaces] = {false, false, false};
-  for (const ColorClass& c : configured_) used[static_cast<int>(c.space)] = true;
-  used[static_cast<int>(ColorSpace::YUV)] = used[static_cast<int>(ColorSpace::YUV)] || options_.create_classes;
-  measureBackground(bgr, landmarks.horizon, object_boxes, used);
-
+  const Spaces spaces = usedSpaces();
+  measureBackground(bgr, landmarks.horizon, object_boxes, spaces);
+  // Regions: the lines of each edge object.
+  std::map<int, std::vector<const DetectedLine*>> by_object;
+  for (const DetectedLine& l : landmarks.lines) by_object[l.object].push_back(&l);
   std::vector<std::vector<ColorStats>> matched(configured_.size());
-  std::vector<Channels> pixels;
-  for (const auto& entry : by_object) {
-    Measurement m;
-    m.region = regionFromLines(entry.second);
-    if (m.region.empty()) continue;
-    std::vector<cv::Point> polygon;
-    for (const cv::Point2d& p : m.region) polygon.emplace_back(cvRound(p.x), cvRound(p.y));
-    // Padded so the erosion also bites at the region's bounding box (outside a Mat, erode
-    // sees set pixels).
-    const int pad = static_cast<int>(std::ceil(options_.shrink_px)) + 1;
-    const cv::Rect bounds = cv::boundingRect(polygon);
-    const cv::Rect roi = cv::Rect(bounds.x - pad, bounds.y - pad, bounds.width + 2 * pad, bounds.height + 2 * pad) & image;
-    if (roi.area() == 0) continue;
-    cv::Mat mask = cv::Mat::zeros(roi.size(), CV_8UC1);
-    for (cv::Point& p : polygon) p -= roi.tl();
-    cv::fillConvexPoly(mask, polygon, cv::Scalar(255));
-    if (options_.shrink_px > 0) {
-      const int k = 2 * static_cast<int>(std::ceil(options_.shrink_px)) + 1;
-      cv::erode(mask, mask, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)));
-    }
-    if (static_cast<uint32_t>(cv::countNonZero(mask)) < options_.min_region_px) {
-      m.rejected = "too small";
-      measurements_.push_back(m);
-      continue;
-    }
-    // The region may hold several objects (boxes touching in the image make one edge object):
-    // each colour mode in it is measured on its own.
-    std::vector<cv::Point> positions;
-    std::vector<Channels> yuv;
-    for (int y = 0; y < roi.height; ++y) {
-      const uint8_t* row = mask.ptr<uint8_t>(y);
-      const cv::Vec3b* p = bgr.ptr<cv::Vec3b>(roi.y + y) + roi.x;
-      for (int x = 0; x < roi.width; ++x) {
-        if (!row[x]) continue;
-        positions.emplace_back(roi.x + x, roi.y + y);
-        yuv.push_back(yuvFromRgb(p[x][2], p[x][1], p[x][0]));
-      }
-    }
-    for (const std::vector<int>& mode : colorModes(yuv, options_.mode_radius, options_.min_region_px)) {
-      Measurement mm = m;
-      std::vector<cv::Point> where;
-      for (int i : mode) where.push_back(positions[i]);
-      mm.pixels_box = cv::boundingRect(where);
-      if (landmarks.horizon.found && std::any_of(where.begin(), where.end(), [&](const cv::Point& p) {
-            return signedDistance(landmarks.horizon.line, p.x, p.y) < options_.horizon_margin_px;
-          })) {
-        mm.rejected = "at or above the horizon";
-        measurements_.push_back(mm);
-        continue;
-      }
-      bool consistent = true;
-      for (int s = 0; s < kNumColorSpaces; ++s) {
-        if (!used[s]) continue;
-        if (s == static_cast<int>(ColorSpace::YUV)) {
-          pixels.clear();
-          for (int i : mode) pixels.push_back(yuv[i]);
-        } else {
-          cv::Mat row(1, static_cast<int>(where.size()), CV_8UC3);
-          for (size_t i = 0; i < where.size(); ++i) row.at<cv::Vec3b>(0, static_cast<int>(i)) = bgr.at<cv::Vec3b>(where[i]);
-          const cv::Mat converted = convertBgrImage(row, static_cast<ColorSpace>(s));
-          pixels.clear();
-          for (size_t i = 0; i < where.size(); ++i) {
-            const cv::Vec3b v = converted.at<cv::Vec3b>(0, static_cast<int>(i));
-            pixels.push_back(Channels{{v[0], v[1], v[2]}});
-          }
-        }
-        colorStats(pixels, &mm.stats[s]);
-        for (int ch = 0; ch < 3; ++ch) consistent = consistent && mm.stats[s].sigma[ch] <= options_.max_sigma;
-      }
-      if (!consistent) {
-        mm.rejected = "mixed colours (one channel spreads more than max_sigma)";
-        measurements_.push_back(mm);
-        continue;
-      }
-      // The nearest class (centre of its current range) within the gate.
-      double best = options_.match_gate;
-      for (size_t k = 0; k < configured_.size(); ++k) {
-        if (wrapped(configured_[k])) continue;  // wrapped (hue) ranges are not learned
-        const ColorStats& st = mm.stats[static_cast<int>(configured_[k].space)];
-        double d2 = 0;
-        for (int ch = 0; ch < 3; ++ch) {
-          const double centre = 0.5 * (state_[k].lo[ch] + state_[k].hi[ch]);
-          d2 += (st.mean[ch] - centre) * (st.mean[ch] - centre);
-        }
-        if (std::sqrt(d2) <= best) {
-          best = std::sqrt(d2);
-          mm.matched_class = static_cast<int>(k);
-        }
-      }
-      if (mm.matched_class >= 0) {
-        // A mode of the ground's or the sky's colour is background between boxes, not an object.
-        const ColorSpace space = configured_[mm.matched_class].space;
-        const ColorStats& st = mm.stats[static_cast<int>(space)];
-        const ColorStats* g = groundStats(space);
-        const ColorStats* sk = skyStats(space);
-        if ((g && overlaps(st, *g)) || (sk && overlaps(st, *sk))) {
-          mm.rejected = "the ground's or the sky's colour";
-          mm.matched_class = -1;
-        } else {
-          matched[mm.matched_class].push_back(st);
-        }
-      } else {
-        mm.rejected = "matches no class";
-      }
-      measurements_.push_back(mm);
+  for (const auto& entry : by_object) measureRegion(bgr, entry.second, landmarks.horizon, spaces, &matched);
+  applyMatched(matched, stamp_s);
+  driftBack(stamp_s);
+  if (options_.create_classes) createClasses(stamp_s);
+  return updateClassSet();
+}
+
+bool ColorLearner::regionPixels(const cv::Mat& bgr, const std::vector<cv::Point2d>& region,
+                                RegionPixels* pixels) const {
+  std::vector<cv::Point> polygon;
+  for (const cv::Point2d& p : region) polygon.emplace_back(cvRound(p.x), cvRound(p.y));
+  // Padded so the erosion also bites at the region's bounding box (outside a Mat, erode
+  // sees set pixels).
+  const int pad = static_cast<int>(std::ceil(options_.shrink_px)) + 1;
+  const cv::Rect bounds = cv::boundingRect(polygon);
+  const cv::Rect roi = cv::Rect(bounds.x - pad, bounds.y - pad, bounds.width + 2 * pad, bounds.height + 2 * pad) &
+                       cv::Rect(0, 0, bgr.cols, bgr.rows);
+  if (roi.area() == 0) return false;
+  cv::Mat mask = cv::Mat::zeros(roi.size(), CV_8UC1);
+  for (cv::Point& p : polygon) p -= roi.tl();
+  cv::fillConvexPoly(mask, polygon, cv::Scalar(255));
+  if (options_.shrink_px > 0) {
+    const int k = 2 * static_cast<int>(std::ceil(options_.shrink_px)) + 1;
+    cv::erode(mask, mask, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)));
+  }
+  for (int y = 0; y < roi.height; ++y) {
+    const uint8_t* row = mask.ptr<uint8_t>(y);
+    const cv::Vec3b* p = bgr.ptr<cv::Vec3b>(roi.y + y) + roi.x;
+    for (int x = 0; x < roi.width; ++x) {
+      if (!row[x]) continue;
+      pixels->positions.emplace_back(roi.x + x, roi.y + y);
+      pixels->yuv.push_back(yuvFromRgb(p[x][2], p[x][1], p[x][0]));
     }
   }
+  return true;
+}
 
+void ColorLearner::measureRegion(const cv::Mat& bgr, const std::vector<const DetectedLine*>& lines,
+                                 const HorizonEstimate& horizon, const Spaces& spaces,
+                                 std::vector<std::vector<ColorStats>>* matched) {
+  Measurement m;
+  m.region = regionFromLines(lines);
+  if (m.region.empty()) return;
+  RegionPixels pixels;
+  if (!regionPixels(bgr, m.region, &pixels)) return;
+  if (static_cast<uint32_t>(pixels.positions.size()) < options_.min_region_px) {
+    reject(&m, Rejection::kTooSmall);
+    measurements_.push_back(m);
+    return;
+  }
+  // The region may hold several objects (boxes touching in the image make one edge object):
+  // each colour mode in it is measured on its own.
+  for (const std::vector<int>& mode : colorModes(pixels.yuv, options_.mode_radius, options_.min_region_px)) {
+    Measurement mm = m;
+    measureMode(bgr, pixels, mode, horizon, spaces, &mm);
+    if (mm.matched_class >= 0) (*matched)[mm.matched_class].push_back(mm.stats[static_cast<int>(configured_[mm.matched_class].space)]);
+    measurements_.push_back(mm);
+  }
+}
+
+void ColorLearner::measureMode(const cv::Mat& bgr, const RegionPixels& pixels, const std::vector<int>& mode,
+                               const HorizonEstimate& horizon, const Spaces& spaces, Measurement* m) {
+  std::vector<cv::Point> where;
+  for (int i : mode) where.push_back(pixels.positions[i]);
+  m->pixels_box = cv::boundingRect(where);
+  if (horizon.found && std::any_of(where.begin(), where.end(), [&](const cv::Point& p) {
+        return signedDistance(horizon.line, p.x, p.y) < options_.horizon_margin_px;
+      })) {
+    return reject(m, Rejection::kAboveHorizon);
+  }
+  bool consistent = true;
+  std::vector<Channels> colours;
+  for (int s = 0; s < kNumColorSpaces; ++s) {
+    if (!spaces.used[s]) continue;
+    colours.clear();
+    if (s == static_cast<int>(ColorSpace::YUV)) {
+      for (int i : mode) colours.push_back(pixels.yuv[i]);
+    } else {
+      cv::Mat row(1, static_cast<int>(where.size()), CV_8UC3);
+      for (size_t i = 0; i < where.size(); ++i) row.at<cv::Vec3b>(0, static_cast<int>(i)) = bgr.at<cv::Vec3b>(where[i]);
+      const cv::Mat converted = convertBgrImage(row, static_cast<ColorSpace>(s));
+      for (size_t i = 0; i < where.size(); ++i) {
+        const cv::Vec3b v = converted.at<cv::Vec3b>(0, static_cast<int>(i));
+        colours.push_back(Channels{{v[0], v[1], v[2]}});
+      }
+    }
+    colorStats(colours, &m->stats[s]);
+    for (int ch = 0; ch < 3; ++ch) consistent = consistent && m->stats[s].sigma[ch] <= options_.max_sigma;
+  }
+  if (!consistent) return reject(m, Rejection::kMixedColours);
+  const int k = nearestClass(*m);
+  if (k < 0) return reject(m, Rejection::kNoClass);
+  // A mode of the ground's or the sky's colour is background between boxes, not an object.
+  if (isBackground(configured_[k].space, m->stats[static_cast<int>(configured_[k].space)])) {
+    return reject(m, Rejection::kBackground);
+  }
+  m->matched_class = k;
+}
+
+int ColorLearner::nearestClass(const Measurement& m) const {
+  // The nearest class (centre of its current range) within the gate.
+  double best = options_.match_gate;
+  int nearest = -1;
+  for (size_t k = 0; k < configured_.size(); ++k) {
+    if (wrapped(configured_[k])) continue;  // wrapped (hue) ranges are not learned
+    const ColorStats& st = m.stats[static_cast<int>(configured_[k].space)];
+    double d2 = 0;
+    for (int ch = 0; ch < 3; ++ch) {
+      const double centre = 0.5 * (state_[k].lo[ch] + state_[k].hi[ch]);
+      d2 += (st.mean[ch] - centre) * (st.mean[ch] - centre);
+    }
+    if (std::sqrt(d2) <= best) {
+      best = std::sqrt(d2);
+      nearest = static_cast<int>(k);
+    }
+  }
+  return nearest;
+}
+
+void ColorLearner::applyMatched(const std::vector<std::vector<ColorStats>>& matched, double stamp_s) {
   // One update per class: the union of this frame's measurements of it, blended in.
   for (size_t k = 0; k < configured_.size(); ++k) {
     if (matched[k].empty()) continue;
@@ -426,69 +459,72 @@ bool ColorLearner::update(const cv::Mat& bgr, const LandmarkResult& landmarks, c
         all.hi[ch] = std::max(all.hi[ch], st.hi[ch]);
       }
     }
-    std::string rejected;
-    if (!apply(static_cast<int>(k), all, stamp_s, &rejected)) {
-      for (Measurement& m : measurements_) {
-        if (m.matched_class == static_cast<int>(k)) m.rejected = rejected;
-      }
+    int conflicting = -1;
+    const Rejection rejection = apply(static_cast<int>(k), all, stamp_s, &conflicting);
+    if (rejection == Rejection::kNone) continue;
+    for (Measurement& m : measurements_) {
+      if (m.matched_class == static_cast<int>(k)) reject(&m, rejection, conflicting);
     }
   }
-  driftBack(stamp_s);
+}
 
-  // New classes from persistent unmatched regions (optional).
-  if (options_.create_classes) {
-    const int yuv = static_cast<int>(ColorSpace::YUV);
-    for (const Measurement& m : measurements_) {
-      if (m.rejected != "matches no class" || m.stats[yuv].pixels < options_.min_new_class_px) continue;
-      const ColorStats& st = m.stats[yuv];
-      const ColorStats* g = groundStats(ColorSpace::YUV);
-      const ColorStats* s = skyStats(ColorSpace::YUV);
-      if ((g && overlaps(st, *g)) || (s && overlaps(st, *s))) continue;
-      Candidate* same = nullptr;
-      for (Candidate& c : candidates_) {
-        double d2 = 0;
-        for (int ch = 0; ch < 3; ++ch) d2 += (c.mean[ch] - st.mean[ch]) * (c.mean[ch] - st.mean[ch]);
-        if (std::sqrt(d2) <= options_.match_gate) same = &c;
-      }
-      if (!same) {
-        candidates_.push_back(Candidate{{st.mean[0], st.mean[1], st.mean[2]}, st, 0, stamp_s});
-        same = &candidates_.back();
-      }
-      ++same->frames;
-      same->last_seen_s = stamp_s;
-      same->stats = st;
-      for (int ch = 0; ch < 3; ++ch) same->mean[ch] = st.mean[ch];
+void ColorLearner::createClasses(double stamp_s) {
+  // New classes from persistent unmatched regions.
+  const int yuv = static_cast<int>(ColorSpace::YUV);
+  for (const Measurement& m : measurements_) {
+    if (m.rejection != Rejection::kNoClass || m.stats[yuv].pixels < options_.min_new_class_px) continue;
+    const ColorStats& st = m.stats[yuv];
+    if (isBackground(ColorSpace::YUV, st)) continue;
+    Candidate* same = nullptr;
+    for (Candidate& c : candidates_) {
+      double d2 = 0;
+      for (int ch = 0; ch < 3; ++ch) d2 += (c.mean[ch] - st.mean[ch]) * (c.mean[ch] - st.mean[ch]);
+      if (std::sqrt(d2) <= options_.match_gate) same = &c;
     }
-    candidates_.erase(std::remove_if(candidates_.begin(), candidates_.end(),
-                                     [&](const Candidate& c) { return stamp_s - c.last_seen_s > 2.0; }),
-                      candidates_.end());
-    for (auto it = candidates_.begin(); it != candidates_.end();) {
-      if (it->frames < options_.persist_frames || configured_.size() >= static_cast<size_t>(kMaxColorClasses)) {
-        ++it;
-        continue;
-      }
-      ColorClass c;
-      c.name = "learned_" + std::to_string(++created_);
-      c.space = ColorSpace::YUV;
-      c.min = it->stats.lo;
-      c.max = it->stats.hi;
-      cv::Mat yuv_pixel(1, 1, CV_8UC3, cv::Scalar(it->mean[0], it->mean[1], it->mean[2])), rgb;
-      cv::cvtColor(yuv_pixel, rgb, cv::COLOR_YUV2RGB);
-      c.display_rgb = Channels{{rgb.at<cv::Vec3b>(0, 0)[0], rgb.at<cv::Vec3b>(0, 0)[1], rgb.at<cv::Vec3b>(0, 0)[2]}};
-      c.min_area_px = options_.min_new_class_px / 4;
-      c.source = "learned";
-      configured_.push_back(c);
-      ClassState s;
-      for (int ch = 0; ch < 3; ++ch) {
-        s.lo[ch] = c.min[ch];
-        s.hi[ch] = c.max[ch];
-      }
-      s.last_measured_s = stamp_s;
-      state_.push_back(s);
-      it = candidates_.erase(it);
+    if (!same) {
+      candidates_.push_back(Candidate{{st.mean[0], st.mean[1], st.mean[2]}, st, 0, stamp_s});
+      same = &candidates_.back();
     }
+    ++same->frames;
+    same->last_seen_s = stamp_s;
+    same->stats = st;
+    for (int ch = 0; ch < 3; ++ch) same->mean[ch] = st.mean[ch];
   }
+  candidates_.erase(std::remove_if(candidates_.begin(), candidates_.end(),
+                                   [&](const Candidate& c) { return stamp_s - c.last_seen_s > 2.0; }),
+                    candidates_.end());
+  for (auto it = candidates_.begin(); it != candidates_.end();) {
+    if (it->frames < options_.persist_frames || configured_.size() >= static_cast<size_t>(kMaxColorClasses)) {
+      ++it;
+      continue;
+    }
+    addClass(*it, stamp_s);
+    it = candidates_.erase(it);
+  }
+}
 
+void ColorLearner::addClass(const Candidate& candidate, double stamp_s) {
+  ColorClass c;
+  c.name = "learned_" + std::to_string(++created_);
+  c.space = ColorSpace::YUV;
+  c.min = candidate.stats.lo;
+  c.max = candidate.stats.hi;
+  cv::Mat yuv_pixel(1, 1, CV_8UC3, cv::Scalar(candidate.mean[0], candidate.mean[1], candidate.mean[2])), rgb;
+  cv::cvtColor(yuv_pixel, rgb, cv::COLOR_YUV2RGB);
+  c.display_rgb = Channels{{rgb.at<cv::Vec3b>(0, 0)[0], rgb.at<cv::Vec3b>(0, 0)[1], rgb.at<cv::Vec3b>(0, 0)[2]}};
+  c.min_area_px = options_.min_new_class_px / 4;
+  c.source = "learned";
+  configured_.push_back(c);
+  ClassState s;
+  for (int ch = 0; ch < 3; ++ch) {
+    s.lo[ch] = c.min[ch];
+    s.hi[ch] = c.max[ch];
+  }
+  s.last_measured_s = stamp_s;
+  state_.push_back(s);
+}
+
+bool ColorLearner::updateClassSet() {
   // The set to publish; changed when any range moved by a whole step.
   std::vector<ColorClass> next = configured_;
   for (size_t k = 0; k < configured_.size(); ++k) {

@@ -66,37 +66,46 @@ void EdgeObjectFinder::find(const cv::Mat& edges, const EdgeObjectOptions& optio
   const uint8_t sharp = std::max(gray, options.sharp_threshold);
   // Objects are the connected edges as they are (a thin bar's two edges are one object); with
   // thinning, the runs they hold are their crests.
-  labels_.resize(edges.cols);
-  runs_.clear();
-  row_starts_.resize(static_cast<size_t>(edges.rows) + 1);
-  for (int y = 0; y < edges.rows; ++y) {
-    row_starts_[y] = static_cast<int32_t>(runs_.size());
-    edgeClasses(edges.ptr<uint8_t>(y), edges.cols, gray, sharp, labels_.data());
-    appendRowRuns(labels_.data(), edges.cols, y, &runs_);
-  }
-  row_starts_[edges.rows] = static_cast<int32_t>(runs_.size());
-  builder_.build(&runs_, row_starts_, options.connectivity, {}, &regions_, /*join_labels=*/true);
+  encodeEdges(edges, gray, sharp, &runs_);
+  builder_.build(&runs_, row_starts_, options.connectivity, {}, &regions_, Joining::kAnyLabel);
   object_of_root_.assign(runs_.size(), -1);
   for (size_t i = 0; i < regions_.size(); ++i) object_of_root_[regions_[i].root_run] = static_cast<int32_t>(i);
-
+  if (options.thin) crestRuns(edges, gray, sharp);
   // The runs objects hold: every edge run, or the crest runs (each inside one edge run).
-  std::vector<Run>& held = options.thin ? crest_runs_ : runs_;
-  std::vector<int32_t> held_region;
-  if (options.thin) {
-    thinEdges(edges, gray, &thin_);
-    crest_runs_.clear();
-    for (int y = 0; y < edges.rows; ++y) {
-      const size_t first = crest_runs_.size();
-      edgeClasses(thin_.ptr<uint8_t>(y), edges.cols, gray, sharp, labels_.data());
-      appendRowRuns(labels_.data(), edges.cols, y, &crest_runs_);
-      // Each crest run lies inside an edge run of its row: that run's region is its object.
-      int32_t edge_run = row_starts_[y];
-      for (size_t i = first; i < crest_runs_.size(); ++i) {
-        while (runs_[edge_run].x1 < crest_runs_[i].x0) ++edge_run;
-        crest_runs_[i].parent = runs_[edge_run].parent;
-      }
+  const std::vector<Run>& held = options.thin ? crest_runs_ : runs_;
+  collectObjects(held, options.min_object_px);
+  groupRuns(held);
+}
+
+void EdgeObjectFinder::encodeEdges(const cv::Mat& edges, uint8_t gray, uint8_t sharp, std::vector<Run>* runs) {
+  labels_.resize(edges.cols);
+  runs->clear();
+  row_starts_.resize(static_cast<size_t>(edges.rows) + 1);
+  for (int y = 0; y < edges.rows; ++y) {
+    row_starts_[y] = static_cast<int32_t>(runs->size());
+    edgeClasses(edges.ptr<uint8_t>(y), edges.cols, gray, sharp, labels_.data());
+    appendRowRuns(labels_.data(), edges.cols, y, runs);
+  }
+  row_starts_[edges.rows] = static_cast<int32_t>(runs->size());
+}
+
+void EdgeObjectFinder::crestRuns(const cv::Mat& edges, uint8_t gray, uint8_t sharp) {
+  thinEdges(edges, gray, &thin_);
+  crest_runs_.clear();
+  for (int y = 0; y < edges.rows; ++y) {
+    const size_t first = crest_runs_.size();
+    edgeClasses(thin_.ptr<uint8_t>(y), edges.cols, gray, sharp, labels_.data());
+    appendRowRuns(labels_.data(), edges.cols, y, &crest_runs_);
+    // Each crest run lies inside an edge run of its row: that run's region is its object.
+    int32_t edge_run = row_starts_[y];
+    for (size_t i = first; i < crest_runs_.size(); ++i) {
+      while (runs_[edge_run].x1 < crest_runs_[i].x0) ++edge_run;
+      crest_runs_[i].parent = runs_[edge_run].parent;
     }
   }
+}
+
+void EdgeObjectFinder::collectObjects(const std::vector<Run>& held, uint32_t min_object_px) {
   // Object statistics from the runs held, then the minimum size.
   struct Stats {
     uint64_t pixels = 0;
@@ -123,7 +132,7 @@ void EdgeObjectFinder::find(const cv::Mat& edges, const EdgeObjectOptions& optio
   object_index_.assign(regions_.size(), -1);
   for (size_t r = 0; r < regions_.size(); ++r) {
     const Stats& st = stats[r];
-    if (st.pixels < options.min_object_px) continue;
+    if (st.pixels < min_object_px) continue;
     object_index_[r] = static_cast<int32_t>(objects_.size());
     EdgeObject o;
     o.pixels = static_cast<uint32_t>(st.pixels);
@@ -136,6 +145,9 @@ void EdgeObjectFinder::find(const cv::Mat& edges, const EdgeObjectOptions& optio
     o.run_count = st.runs;
     objects_.push_back(o);
   }
+}
+
+void EdgeObjectFinder::groupRuns(const std::vector<Run>& held) {
   // Group the runs of each kept object together, row-major within it (a counting sort).
   int32_t offset = 0;
   fill_.resize(objects_.size());

@@ -23,10 +23,11 @@ inline int64_t sumOfSquares(int64_t n) { return n * (n + 1) * (2 * n + 1) / 6; }
 
 void RegionBuilder::build(std::vector<Run>* runs_ptr, const std::vector<int32_t>& row_starts,
                           Connectivity connectivity, const std::vector<uint32_t>& min_area_by_label,
-                          std::vector<Region>* regions, bool join_labels) {
+                          std::vector<Region>* regions, Joining joining) {
   std::vector<Run>& runs = *runs_ptr;
   regions->clear();
   const int32_t reach = connectivity == Connectivity::Eight ? 1 : 0;
+  const bool any_label = joining == Joining::kAnyLabel;
   const int rows = static_cast<int>(row_starts.size()) - 1;
   for (int y = 1; y < rows; ++y) {
     int32_t above = row_starts[y - 1];
@@ -36,12 +37,18 @@ void RegionBuilder::build(std::vector<Run>* runs_ptr, const std::vector<int32_t>
       // Runs above that end left of this one cannot touch it nor any run further right.
       while (above < above_end && runs[above].x1 + reach < run.x0) ++above;
       for (int32_t j = above; j < above_end && runs[j].x0 <= run.x1 + reach; ++j) {
-        if (join_labels || runs[j].label == run.label) unite(runs, i, j);
+        if (any_label || runs[j].label == run.label) unite(runs, i, j);
       }
     }
   }
+  accumulateMoments(&runs);
+  emitRegions(runs, min_area_by_label, regions);
+  findBottoms(runs, regions);
+}
 
+void RegionBuilder::accumulateMoments(std::vector<Run>* runs_ptr) {
   // One pass over runs accumulates each region's moments; a root precedes its members.
+  std::vector<Run>& runs = *runs_ptr;
   moment_index_.resize(runs.size());
   moments_.clear();
   for (int32_t i = 0; i < static_cast<int32_t>(runs.size()); ++i) {
@@ -66,7 +73,10 @@ void RegionBuilder::build(std::vector<Run>* runs_ptr, const std::vector<int32_t>
     if (run.x1 > m.right) m.right = run.x1;
     m.bottom = run.y;  // runs come in row order
   }
+}
 
+void RegionBuilder::emitRegions(const std::vector<Run>& runs, const std::vector<uint32_t>& min_area_by_label,
+                                std::vector<Region>* regions) {
   region_of_moment_.assign(moments_.size(), -1);
   for (int32_t i = 0; i < static_cast<int32_t>(runs.size()); ++i) {
     if (runs[i].parent != i) continue;
@@ -96,7 +106,9 @@ void RegionBuilder::build(std::vector<Run>* runs_ptr, const std::vector<int32_t>
     region_of_moment_[moment_index_[i]] = static_cast<int32_t>(regions->size());
     regions->push_back(r);
   }
+}
 
+void RegionBuilder::findBottoms(const std::vector<Run>& runs, std::vector<Region>* regions) const {
   // Bottom-up over the runs: the first run of a region covering its centroid's column is the
   // lowest one there.
   for (int32_t i = static_cast<int32_t>(runs.size()) - 1; i >= 0; --i) {

@@ -13,10 +13,6 @@ struct Normal {
   double distance(double x, double y) const { return a * x + b * y + c; }
 };
 
-struct RidgePoint {
-  double x, y, t;
-};
-
 // Bilinear edge value at (x, y); 0 outside the image.
 inline double sample(const cv::Mat& edges, double x, double y) {
   const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
@@ -31,8 +27,11 @@ inline double sample(const cv::Mat& edges, double x, double y) {
 // steps, bilinear) where it peaks above min_strength; its centre is the centroid of the
 // profile above half the edge threshold. Perpendicular profiles stay symmetric at end caps,
 // unlike row or column profiles of a slanted line.
-void ridgePoints(const cv::Mat& edges, const ImageLine& line, double t0, double t1,
-                 const RidgeFitOptions& o, std::vector<RidgePoint>* out) {
+}  // namespace
+
+void RidgeFitter::ridgePoints(const cv::Mat& edges, const ImageLine& line, double t0, double t1,
+                              const RidgeFitOptions& o) {
+  std::vector<RidgePoint>* const out = &points_;
   out->clear();
   const double c = std::cos(line.theta), s = std::sin(line.theta);
   const double nx = -s, ny = c;
@@ -41,9 +40,8 @@ void ridgePoints(const cv::Mat& edges, const ImageLine& line, double t0, double 
   const double t_origin = px * c + py * s;
   constexpr double kStep = 0.5;
   const int half = static_cast<int>(std::ceil(o.half_width_px / kStep));
-  thread_local std::vector<double> profile_buffer;
-  profile_buffer.resize(2 * half + 1);
-  double* const profile = profile_buffer.data();
+  profile_.resize(2 * half + 1);
+  double* const profile = profile_.data();
   const double floor = 0.5 * o.min_strength;
   // Samples whose 2x2 neighbourhood is inside the image: x in [0, cols - 1), y in [0, rows - 1).
   const double x_max = edges.cols - 1, y_max = edges.rows - 1;
@@ -92,6 +90,8 @@ void ridgePoints(const cv::Mat& edges, const ImageLine& line, double t0, double 
   }
 }
 
+namespace {
+
 // The median of v[0..4] by a few compares (nth_element on 5 values is far slower).
 inline double median5(const double* v) {
   double a = v[0], b = v[1], c = v[2], d = v[3], e = v[4];
@@ -109,27 +109,31 @@ inline double median5(const double* v) {
   return a < c ? std::min(b, c) : std::min(a, d);
 }
 
-bool fitPoints(const std::vector<RidgePoint>& points, size_t first, size_t last, ImageLine* line,
-               double* rms, PointSums* sums) {
+// The total-least-squares line through points[first..last] (at least 3), with its sums.
+template <class Point>
+bool fitPoints(const std::vector<Point>& points, size_t first, size_t last, RidgeFit* fit) {
   PointSums s;
   for (size_t i = first; i <= last; ++i) s.addPixel(points[i].x, points[i].y);
-  if (s.n < 3 || !s.fitLine(line, rms)) return false;
-  if (sums) *sums = s;
+  if (s.n < 3 || !s.fitLine(&fit->line, &fit->rms)) return false;
+  fit->sums = s;
   return true;
 }
+
+}  // namespace
 
 // Douglas-Peucker on ridge points[first..last] (inliers, ordered along the line): a stretch
 // that bends more than split_px away from its fitted line splits at the farthest point. The
 // deviation is median-filtered over 5 points, so a corner splits a stretch and a stray point
 // does not.
-void splitAndFit(const std::vector<RidgePoint>& points, size_t first, size_t last, const RidgeFitOptions& o,
-                 double min_length, int depth, std::vector<RidgeFit>* fits) {
+void RidgeFitter::splitAndFit(size_t first, size_t last, const RidgeFitOptions& o, double min_length, int depth,
+                              std::vector<RidgeFit>* fits) {
+  const std::vector<RidgePoint>& points = inliers_;
   if (last <= first + 2 || points[last].t - points[first].t < min_length) return;
   RidgeFit fit;
-  if (!fitPoints(points, first, last, &fit.line, &fit.rms, &fit.sums)) return;
+  if (!fitPoints(points, first, last, &fit)) return;
   // Deviation from the chord between the stretch's ends (the classic Douglas-Peucker measure:
   // at a corner it peaks at the vertex, where a least-squares line would peak at the ends).
-  thread_local std::vector<double> deviation;
+  std::vector<double>& deviation = deviation_;
   deviation.resize(last - first + 1);
   const Normal chord(lineThroughPoints(points[first].x, points[first].y, points[last].x, points[last].y));
   for (size_t i = first; i <= last; ++i) deviation[i - first] = std::fabs(chord.distance(points[i].x, points[i].y));
@@ -145,15 +149,13 @@ void splitAndFit(const std::vector<RidgePoint>& points, size_t first, size_t las
   if (largest > o.split_px && depth < 8) {
     // A corner also turns: split only when the two sides' own lines differ in angle (a
     // straight edge whose end points sit on bent corners does not).
-    ImageLine head, tail;
-    double head_rms = 0, tail_rms = 0;
-    const bool turns = farthest >= first + 3 && last >= farthest + 3 &&
-                       fitPoints(points, first, farthest, &head, &head_rms, nullptr) &&
-                       fitPoints(points, farthest, last, &tail, &tail_rms, nullptr) &&
-                       lineAngleDifference(head.theta, tail.theta) > o.split_angle_deg * M_PI / 180;
+    RidgeFit head, tail;
+    const bool turns = farthest >= first + 3 && last >= farthest + 3 && fitPoints(points, first, farthest, &head) &&
+                       fitPoints(points, farthest, last, &tail) &&
+                       lineAngleDifference(head.line.theta, tail.line.theta) > o.split_angle_deg * M_PI / 180;
     if (turns) {
-      splitAndFit(points, first, farthest, o, min_length, depth + 1, fits);
-      splitAndFit(points, farthest, last, o, min_length, depth + 1, fits);
+      splitAndFit(first, farthest, o, min_length, depth + 1, fits);
+      splitAndFit(farthest, last, o, min_length, depth + 1, fits);
       return;
     }
   }
@@ -188,27 +190,19 @@ void splitAndFit(const std::vector<RidgePoint>& points, size_t first, size_t las
   fits->push_back(fit);
 }
 
-void fitRobustly(std::vector<RidgePoint>* points, const ImageLine& start, const RidgeFitOptions& o,
-                 double min_length, std::vector<RidgeFit>* fits);
-
-}  // namespace
-
-void fitRidge(const cv::Mat& edges, const ImageLine& start, double t0, double t1, const RidgeFitOptions& o,
-              double min_length, std::vector<RidgeFit>* fits) {
-  thread_local std::vector<RidgePoint> points;
-  ridgePoints(edges, start, t0, t1, o, &points);
-  fitRobustly(&points, start, o, min_length, fits);
+void RidgeFitter::fit(const cv::Mat& edges, const ImageLine& start, double t0, double t1, const RidgeFitOptions& o,
+                      double min_length, std::vector<RidgeFit>* fits) {
+  ridgePoints(edges, start, t0, t1, o);
+  fitRobustly(start, o, min_length, fits);
 }
 
-namespace {
-
-void fitRobustly(std::vector<RidgePoint>* points_ptr, const ImageLine& start, const RidgeFitOptions& o,
-                 double min_length, std::vector<RidgeFit>* fits) {
+void RidgeFitter::fitRobustly(const ImageLine& start, const RidgeFitOptions& o, double min_length,
+                              std::vector<RidgeFit>* fits) {
   fits->clear();
-  const std::vector<RidgePoint>& points = *points_ptr;
-  // Scratch reused across calls (one set per thread).
-  thread_local std::vector<RidgePoint> inliers;
-  thread_local std::vector<double> residuals, sorted;
+  const std::vector<RidgePoint>& points = points_;
+  std::vector<RidgePoint>& inliers = inliers_;
+  std::vector<double>& residuals = residuals_;
+  std::vector<double>& sorted = sorted_;
   if (points.size() < 3) return;
   // A robust line through all ridge points: fit, keep the points within a cut that shrinks to
   // three times the median residual (ignoring neighbouring ridges near corners), fit again.
@@ -239,11 +233,9 @@ void fitRobustly(std::vector<RidgePoint>* points_ptr, const ImageLine& start, co
   size_t first = 0;
   for (size_t i = 1; i <= inliers.size(); ++i) {
     if (i < inliers.size() && inliers[i].t - inliers[i - 1].t <= o.max_gap_px) continue;
-    if (!inliers.empty()) splitAndFit(inliers, first, i - 1, o, min_length, 0, fits);
+    if (!inliers.empty()) splitAndFit(first, i - 1, o, min_length, 0, fits);
     first = i;
   }
 }
-
-}  // namespace
 
 }  // namespace rle_vision

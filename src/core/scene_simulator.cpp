@@ -172,38 +172,105 @@ Eigen::Vector2d SceneSimulator::boxPositionAt(const SceneBox& box, double t) con
   return p;
 }
 
-SimFrame SceneSimulator::render(uint64_t frame_index, double t) const {
-  const int width = config_.width, height = config_.height;
-  SimFrame frame;
-  frame.frame_index = frame_index;
-  frame.time_s = t;
-  frame.pose = poseAt(t);
-  frame.light_gain = lightGainAt(t);
-  const double drift = config_.light_drift_duration_s > 0
-                           ? std::min(1.0, std::max(0.0, t / config_.light_drift_duration_s))
-                           : 0.0;
-  std::array<double, 3> cast;
-  for (int c = 0; c < 3; ++c) {
-    cast[c] = config_.light_cast_start_rgb[c] +
-              drift * (config_.light_cast_end_rgb[c] - config_.light_cast_start_rgb[c]);
+namespace {
+
+// What lights a frame: the gain and per-channel colour cast at its time.
+struct Lighting {
+  double gain = 1;
+  std::array<double, 3> cast{{1, 1, 1}};
+};
+
+// A box face's outline as projected, for the straight-edge truth.
+struct CandidateEdge {
+  Eigen::Vector2d a, b;
+  int box;
+};
+
+// Where the camera is and how it looks at the scene.
+struct View {
+  Eigen::Matrix3d optical_from_base;
+  Eigen::Vector3d position;
+};
+
+struct Face {
+  Eigen::Vector3d normal;
+  std::vector<Eigen::Vector3d> corners;
+};
+
+// The five faces a box shows (the bottom never does), in the base frame.
+std::vector<Face> boxFaces(const SceneBox& box, const Eigen::Vector2d& centre) {
+  const Eigen::Matrix2d rot = Eigen::Rotation2Dd(box.yaw_deg * kDegToRad).toRotationMatrix();
+  const Eigen::Vector2d ax = rot.col(0) * (0.5 * box.depth_m);
+  const Eigen::Vector2d ay = rot.col(1) * (0.5 * box.width_m);
+  auto corner = [&](double sx, double sy, double z) {
+    const Eigen::Vector2d p = centre + sx * ax + sy * ay;
+    return Eigen::Vector3d(p.x(), p.y(), z);
+  };
+  const double h = box.height_m;
+  const Eigen::Vector3d nx(rot(0, 0), rot(1, 0), 0), ny(rot(0, 1), rot(1, 1), 0);
+  return {
+      {Eigen::Vector3d::UnitZ(), {corner(-1, -1, h), corner(1, -1, h), corner(1, 1, h), corner(-1, 1, h)}},
+      {nx, {corner(1, -1, 0), corner(1, 1, 0), corner(1, 1, h), corner(1, -1, h)}},
+      {-nx, {corner(-1, -1, 0), corner(-1, 1, 0), corner(-1, 1, h), corner(-1, -1, h)}},
+      {ny, {corner(-1, 1, 0), corner(1, 1, 0), corner(1, 1, h), corner(-1, 1, h)}},
+      {-ny, {corner(-1, -1, 0), corner(1, -1, 0), corner(1, -1, h), corner(-1, -1, h)}},
+  };
+}
+
+// A face's outline in the image: clipped to the near plane and to a guard band around the
+// image (which keeps fixed-point vertices far from overflow). Empty when it is not in view.
+std::vector<Eigen::Vector2d> projectFace(const Face& face, const View& view, const PinholeCamera& camera, double guard) {
+  std::vector<Eigen::Vector3d> in_camera;
+  for (const auto& p : face.corners) in_camera.push_back(view.optical_from_base * (p - view.position));
+  in_camera = clipPolygon(in_camera, [](const Eigen::Vector3d& p) { return p.z() - kNearPlaneM; });
+  if (in_camera.size() < 3) return {};
+  std::vector<Eigen::Vector2d> projected;
+  for (const auto& p : in_camera) projected.push_back(camera.project(p));
+  for (int axis = 0; axis < 2; ++axis) {
+    projected = clipPolygon(projected, [&](const Eigen::Vector2d& p) { return p[axis] + guard; });
+    projected = clipPolygon(projected, [&](const Eigen::Vector2d& p) { return guard - p[axis]; });
   }
+  if (projected.size() < 3) return {};
+  return projected;
+}
 
-  const Eigen::Matrix3d base_from_optical =
-      opticalToBaseRotation(frame.pose.roll, frame.pose.pitch, frame.pose.yaw);
-  const Eigen::Matrix3d optical_from_base = base_from_optical.transpose();
-  const Eigen::Vector3d camera_position(frame.pose.x_m, frame.pose.y_m, frame.pose.height_m);
+// Ground truth of one box from the label image: its pixels, their pieces and what they touch.
+void boxMaskTruth(const cv::Mat& labels, const std::vector<SceneBox>& boxes, size_t i, BoxTruth* truth) {
+  // Within the bounding box (grown by one pixel to see neighbours): pieces of the mask, and
+  // whether a same-class box's pixels touch it (8-neighbourhood).
+  const cv::Rect roi = cv::Rect(truth->left - 1, truth->top - 1, truth->right - truth->left + 3,
+                                truth->bottom - truth->top + 3) & cv::Rect(0, 0, labels.cols, labels.rows);
+  const cv::Mat labels_roi = labels(roi);
+  const cv::Mat mask = labels_roi == truth->label;
+  cv::Mat components;
+  truth->pieces = cv::connectedComponents(mask, components, 8, CV_32S) - 1;
+  cv::Mat same_class = cv::Mat::zeros(roi.size(), CV_8UC1);
+  for (size_t j = 0; j < boxes.size(); ++j) {
+    if (j != i && boxes[j].color_class == boxes[i].color_class) {
+      same_class |= labels_roi == static_cast<uint8_t>(SceneSimulator::kFirstBoxLabel + j);
+    }
+  }
+  const cv::Mat other_box = (labels_roi >= SceneSimulator::kFirstBoxLabel) & (labels_roi != truth->label);
+  cv::Mat grown;
+  cv::dilate(mask, grown, cv::Mat());
+  truth->touches_same_class = cv::countNonZero(grown & same_class) > 0;
+  truth->touches_other_box = cv::countNonZero(grown & other_box) > 0;
+}
 
-  // Sky and ground, split exactly at the horizon: a pixel sees the sky when its ray points up.
-  frame.image.create(height, width, CV_8UC3);
-  frame.labels.create(height, width, CV_8UC1);
-  const cv::Scalar ground = litBgr(config_.ground_rgb, 1.0, frame.light_gain, cast);
-  const cv::Scalar sky = litBgr(config_.sky_rgb, 1.0, frame.light_gain, cast);
+// Sky and ground, split exactly at the horizon: a pixel sees the sky when its ray points up.
+void paintSkyAndGround(const SceneConfig& config, const PinholeCamera& camera, const View& view, const Lighting& light,
+                       SimFrame* frame) {
+  const int width = config.width, height = config.height;
+  frame->image.create(height, width, CV_8UC3);
+  frame->labels.create(height, width, CV_8UC1);
+  const cv::Scalar ground = litBgr(config.ground_rgb, 1.0, light.gain, light.cast);
+  const cv::Scalar sky = litBgr(config.sky_rgb, 1.0, light.gain, light.cast);
   double a = 0, b = 0, c = 0;
-  const bool has_horizon = horizonFromUp(camera_, optical_from_base * Eigen::Vector3d::UnitZ(), &a, &b, &c);
+  const bool has_horizon = horizonFromUp(camera, view.optical_from_base * Eigen::Vector3d::UnitZ(), &a, &b, &c);
   if (has_horizon) {
-    frame.horizon = lineFromHomogeneous(a, b, c);
+    frame->horizon = lineFromHomogeneous(a, b, c);
     double x1, y1, x2, y2;
-    frame.horizon_visible = clipLineToImage(frame.horizon, width, height, &x1, &y1, &x2, &y2);
+    frame->horizon_visible = clipLineToImage(frame->horizon, width, height, &x1, &y1, &x2, &y2);
   }
   for (int v = 0; v < height; ++v) {
     // Sky where a*u + (b*v + c) > 0: one interval [sky_begin, sky_end) per row.
@@ -217,84 +284,54 @@ SimFrame SceneSimulator::render(uint64_t frame_index, double t) const {
     } else {
       sky_end = static_cast<int>(std::max(0.0, std::min<double>(width, std::ceil(-offset / a))));
     }
-    cv::Mat image_row = frame.image.row(v);
-    cv::Mat label_row = frame.labels.row(v);
+    cv::Mat image_row = frame->image.row(v);
+    cv::Mat label_row = frame->labels.row(v);
     image_row.setTo(ground);
-    label_row.setTo(kGroundLabel);
+    label_row.setTo(SceneSimulator::kGroundLabel);
     if (sky_end > sky_begin) {
       image_row.colRange(sky_begin, sky_end).setTo(sky);
-      label_row.colRange(sky_begin, sky_end).setTo(kSkyLabel);
+      label_row.colRange(sky_begin, sky_end).setTo(SceneSimulator::kSkyLabel);
     }
   }
+}
 
-  // Boxes, far to near (painter's algorithm; boxes standing apart on a plane sort correctly).
+// Boxes at `positions`, far to near (painter's algorithm; boxes standing apart on a plane sort
+// correctly), with the outlines of their faces for the edge truth.
+void paintBoxes(const SceneConfig& config, const PinholeCamera& camera, const View& view, const Lighting& light,
+                const std::vector<Eigen::Vector2d>& positions, SimFrame* frame, std::vector<CandidateEdge>* candidate_edges) {
   std::vector<std::pair<double, size_t>> order;
-  for (size_t i = 0; i < config_.boxes.size(); ++i) {
-    const Eigen::Vector2d p = boxPositionAt(config_.boxes[i], t);
-    order.emplace_back(-(Eigen::Vector3d(p.x(), p.y(), 0.5 * config_.boxes[i].height_m) -
-                         camera_position).norm(), i);
+  for (size_t i = 0; i < config.boxes.size(); ++i) {
+    const Eigen::Vector2d& p = positions[i];
+    order.emplace_back(-(Eigen::Vector3d(p.x(), p.y(), 0.5 * config.boxes[i].height_m) - view.position).norm(), i);
   }
   std::sort(order.begin(), order.end());
-  const double guard = 4.0 * std::max(width, height);
-  struct CandidateEdge {
-    Eigen::Vector2d a, b;
-    int box;
-  };
-  std::vector<CandidateEdge> candidate_edges;
+  const double guard = 4.0 * std::max(config.width, config.height);
   for (const auto& entry : order) {
-    const SceneBox& box = config_.boxes[entry.second];
-    const uint8_t label = static_cast<uint8_t>(kFirstBoxLabel + entry.second);
-    const Eigen::Vector2d centre = boxPositionAt(box, t);
-    const Eigen::Matrix2d rot = Eigen::Rotation2Dd(box.yaw_deg * kDegToRad).toRotationMatrix();
-    const Eigen::Vector2d ax = rot.col(0) * (0.5 * box.depth_m);
-    const Eigen::Vector2d ay = rot.col(1) * (0.5 * box.width_m);
-    auto corner = [&](double sx, double sy, double z) {
-      const Eigen::Vector2d p = centre + sx * ax + sy * ay;
-      return Eigen::Vector3d(p.x(), p.y(), z);
-    };
-    const double h = box.height_m;
-    struct Face {
-      Eigen::Vector3d normal;
-      std::vector<Eigen::Vector3d> corners;
-    };
-    const Eigen::Vector3d nx(rot(0, 0), rot(1, 0), 0), ny(rot(0, 1), rot(1, 1), 0);
-    const Face faces[] = {
-        {Eigen::Vector3d::UnitZ(), {corner(-1, -1, h), corner(1, -1, h), corner(1, 1, h), corner(-1, 1, h)}},
-        {nx, {corner(1, -1, 0), corner(1, 1, 0), corner(1, 1, h), corner(1, -1, h)}},
-        {-nx, {corner(-1, -1, 0), corner(-1, 1, 0), corner(-1, 1, h), corner(-1, -1, h)}},
-        {ny, {corner(-1, 1, 0), corner(1, 1, 0), corner(1, 1, h), corner(-1, 1, h)}},
-        {-ny, {corner(-1, -1, 0), corner(1, -1, 0), corner(1, -1, h), corner(-1, -1, h)}},
-    };
-    for (const Face& face : faces) {
-      if ((camera_position - face.corners[0]).dot(face.normal) <= 0) continue;  // back face
-      std::vector<Eigen::Vector3d> in_camera;
-      for (const auto& p : face.corners) in_camera.push_back(optical_from_base * (p - camera_position));
-      in_camera = clipPolygon(in_camera, [](const Eigen::Vector3d& p) { return p.z() - kNearPlaneM; });
-      if (in_camera.size() < 3) continue;
-      std::vector<Eigen::Vector2d> projected;
-      for (const auto& p : in_camera) projected.push_back(camera_.project(p));
-      // Keep fixed-point vertices far from overflow: clip to a guard band around the image.
-      for (int axis = 0; axis < 2; ++axis) {
-        projected = clipPolygon(projected, [&](const Eigen::Vector2d& p) { return p[axis] + guard; });
-        projected = clipPolygon(projected, [&](const Eigen::Vector2d& p) { return guard - p[axis]; });
-      }
-      if (projected.size() < 3) continue;
+    const SceneBox& box = config.boxes[entry.second];
+    const uint8_t label = static_cast<uint8_t>(SceneSimulator::kFirstBoxLabel + entry.second);
+    for (const Face& face : boxFaces(box, positions[entry.second])) {
+      if ((view.position - face.corners[0]).dot(face.normal) <= 0) continue;  // back face
+      const std::vector<Eigen::Vector2d> projected = projectFace(face, view, camera, guard);
+      if (projected.empty()) continue;
       std::vector<cv::Point> points;
       for (const auto& p : projected) {
         points.emplace_back(static_cast<int>(std::lround(p.x() * (1 << kSubPixelBits))),
                             static_cast<int>(std::lround(p.y() * (1 << kSubPixelBits))));
       }
-      const cv::Scalar colour = litBgr(box.rgb, faceShade(face.normal), frame.light_gain, cast);
-      cv::fillConvexPoly(frame.image, points, colour, config_.antialias ? cv::LINE_AA : cv::LINE_8, kSubPixelBits);
-      cv::fillConvexPoly(frame.labels, points, cv::Scalar(label), cv::LINE_8, kSubPixelBits);
+      const cv::Scalar colour = litBgr(box.rgb, faceShade(face.normal), light.gain, light.cast);
+      cv::fillConvexPoly(frame->image, points, colour, config.antialias ? cv::LINE_AA : cv::LINE_8, kSubPixelBits);
+      cv::fillConvexPoly(frame->labels, points, cv::Scalar(label), cv::LINE_8, kSubPixelBits);
       for (size_t k = 0; k < projected.size(); ++k) {
-        candidate_edges.push_back({projected[k], projected[(k + 1) % projected.size()], static_cast<int>(entry.second)});
+        candidate_edges->push_back({projected[k], projected[(k + 1) % projected.size()], static_cast<int>(entry.second)});
       }
     }
   }
+}
 
-  // Straight-edge truth, from the clean image (before blur and noise). A fold shared by two
-  // faces is listed by both: keep it once.
+// Straight-edge truth, from the clean image (before blur and noise). A fold shared by two
+// faces is listed by both: keep it once.
+void edgeTruth(const std::vector<CandidateEdge>& candidate_edges, SimFrame* frame) {
+  const int width = frame->image.cols, height = frame->image.rows;
   for (size_t i = 0; i < candidate_edges.size(); ++i) {
     const CandidateEdge& e = candidate_edges[i];
     bool repeated = false;
@@ -314,26 +351,28 @@ SimFrame SceneSimulator::render(uint64_t frame_index, double t) const {
     const double lo = std::max(std::min(ta, tb), std::min(tc, td)), hi = std::min(std::max(ta, tb), std::max(tc, td));
     if (hi <= lo) continue;
     const double ox = e.a.x() - ta * dx, oy = e.a.y() - ta * dy;  // line point at t = 0
-    visibleStretches(frame.image, frame.labels, ox + lo * dx, oy + lo * dy, ox + hi * dx, oy + hi * dy,
-                     kFirstBoxLabel + e.box, e.box, &frame.edges);
+    visibleStretches(frame->image, frame->labels, ox + lo * dx, oy + lo * dy, ox + hi * dx, oy + hi * dy,
+                     SceneSimulator::kFirstBoxLabel + e.box, e.box, &frame->edges);
   }
-  if (frame.horizon_visible) {
+  if (frame->horizon_visible) {
     double x1, y1, x2, y2;
-    clipLineToImage(frame.horizon, width, height, &x1, &y1, &x2, &y2);
-    visibleStretches(frame.image, frame.labels, x1, y1, x2, y2, -1, -1, &frame.edges);
+    clipLineToImage(frame->horizon, width, height, &x1, &y1, &x2, &y2);
+    visibleStretches(frame->image, frame->labels, x1, y1, x2, y2, -1, -1, &frame->edges);
   }
+}
 
-  // Ground truth from the label image: exactly the pixels each box covers.
+// Ground truth from the label image: exactly the pixels each box covers.
+void boxTruth(const SceneConfig& config, const std::vector<Eigen::Vector2d>& positions, SimFrame* frame) {
   struct Sums {
     uint64_t area = 0, sx = 0, sy = 0;
     int left = INT32_MAX, top = INT32_MAX, right = -1, bottom = -1;
   };
-  std::vector<Sums> sums(config_.boxes.size());
-  for (int v = 0; v < height; ++v) {
-    const uint8_t* row = frame.labels.ptr<uint8_t>(v);
-    for (int u = 0; u < width; ++u) {
-      if (row[u] < kFirstBoxLabel) continue;
-      Sums& s = sums[row[u] - kFirstBoxLabel];
+  std::vector<Sums> sums(config.boxes.size());
+  for (int v = 0; v < config.height; ++v) {
+    const uint8_t* row = frame->labels.ptr<uint8_t>(v);
+    for (int u = 0; u < config.width; ++u) {
+      if (row[u] < SceneSimulator::kFirstBoxLabel) continue;
+      Sums& s = sums[row[u] - SceneSimulator::kFirstBoxLabel];
       ++s.area;
       s.sx += u;
       s.sy += v;
@@ -343,12 +382,12 @@ SimFrame SceneSimulator::render(uint64_t frame_index, double t) const {
       s.bottom = std::max(s.bottom, v);
     }
   }
-  for (size_t i = 0; i < config_.boxes.size(); ++i) {
-    const SceneBox& box = config_.boxes[i];
+  for (size_t i = 0; i < config.boxes.size(); ++i) {
+    const SceneBox& box = config.boxes[i];
     BoxTruth truth;
     truth.name = box.name;
     truth.color_class = box.color_class;
-    truth.label = static_cast<uint8_t>(kFirstBoxLabel + i);
+    truth.label = static_cast<uint8_t>(SceneSimulator::kFirstBoxLabel + i);
     truth.area = static_cast<uint32_t>(sums[i].area);
     if (sums[i].area > 0) {
       truth.cx = static_cast<double>(sums[i].sx) / sums[i].area;
@@ -357,50 +396,62 @@ SimFrame SceneSimulator::render(uint64_t frame_index, double t) const {
       truth.top = sums[i].top;
       truth.right = sums[i].right;
       truth.bottom = sums[i].bottom;
+      boxMaskTruth(frame->labels, config.boxes, i, &truth);
     }
-    if (sums[i].area > 0) {
-      // Within the bounding box (grown by one pixel to see neighbours): pieces of the mask,
-      // and whether a same-class box's pixels touch it (8-neighbourhood).
-      const cv::Rect roi = cv::Rect(truth.left - 1, truth.top - 1, truth.right - truth.left + 3,
-                                    truth.bottom - truth.top + 3) & cv::Rect(0, 0, width, height);
-      const cv::Mat labels_roi = frame.labels(roi);
-      const cv::Mat mask = labels_roi == truth.label;
-      cv::Mat components;
-      truth.pieces = cv::connectedComponents(mask, components, 8, CV_32S) - 1;
-      cv::Mat same_class = cv::Mat::zeros(roi.size(), CV_8UC1);
-      for (size_t j = 0; j < config_.boxes.size(); ++j) {
-        if (j != i && config_.boxes[j].color_class == box.color_class) {
-          same_class |= labels_roi == static_cast<uint8_t>(kFirstBoxLabel + j);
-        }
-      }
-      const cv::Mat other_box = (labels_roi >= kFirstBoxLabel) & (labels_roi != truth.label);
-      cv::Mat grown;
-      cv::dilate(mask, grown, cv::Mat());
-      truth.touches_same_class = cv::countNonZero(grown & same_class) > 0;
-      truth.touches_other_box = cv::countNonZero(grown & other_box) > 0;
-    }
-    truth.position_m = boxPositionAt(box, t);
+    truth.position_m = positions[i];
     truth.width_m = box.width_m;
     truth.depth_m = box.depth_m;
     truth.height_m = box.height_m;
     truth.yaw_rad = box.yaw_deg * kDegToRad;
-    frame.boxes.push_back(truth);
+    frame->boxes.push_back(truth);
   }
+}
 
-  if (config_.blur_sigma_px > 0) {
-    cv::GaussianBlur(frame.image, frame.image, cv::Size(), config_.blur_sigma_px, config_.blur_sigma_px,
+// Lens blur and sensor noise.
+void applySensor(const SceneConfig& config, uint64_t frame_index, SimFrame* frame) {
+  if (config.blur_sigma_px > 0) {
+    cv::GaussianBlur(frame->image, frame->image, cv::Size(), config.blur_sigma_px, config.blur_sigma_px,
                      cv::BORDER_REPLICATE);
   }
-  if (config_.noise_sigma > 0) {
+  if (config.noise_sigma > 0) {
     // One reproducible noise field per (seed, frame).
-    cv::RNG rng(config_.seed * 0x9E3779B97F4A7C15ull + frame_index + 1);
-    cv::Mat noise(height, width, CV_16SC3);
-    rng.fill(noise, cv::RNG::NORMAL, 0.0, config_.noise_sigma);
+    cv::RNG rng(config.seed * 0x9E3779B97F4A7C15ull + frame_index + 1);
+    cv::Mat noise(config.height, config.width, CV_16SC3);
+    rng.fill(noise, cv::RNG::NORMAL, 0.0, config.noise_sigma);
     cv::Mat wide;
-    frame.image.convertTo(wide, CV_16SC3);
+    frame->image.convertTo(wide, CV_16SC3);
     wide += noise;
-    wide.convertTo(frame.image, CV_8UC3);
+    wide.convertTo(frame->image, CV_8UC3);
   }
+}
+
+}  // namespace
+
+SimFrame SceneSimulator::render(uint64_t frame_index, double t) const {
+  SimFrame frame;
+  frame.frame_index = frame_index;
+  frame.time_s = t;
+  frame.pose = poseAt(t);
+  frame.light_gain = lightGainAt(t);
+  Lighting light;
+  light.gain = frame.light_gain;
+  const double drift = config_.light_drift_duration_s > 0
+                           ? std::min(1.0, std::max(0.0, t / config_.light_drift_duration_s))
+                           : 0.0;
+  for (int c = 0; c < 3; ++c) {
+    light.cast[c] = config_.light_cast_start_rgb[c] +
+                    drift * (config_.light_cast_end_rgb[c] - config_.light_cast_start_rgb[c]);
+  }
+  const View view{opticalToBaseRotation(frame.pose.roll, frame.pose.pitch, frame.pose.yaw).transpose(),
+                  Eigen::Vector3d(frame.pose.x_m, frame.pose.y_m, frame.pose.height_m)};
+  std::vector<Eigen::Vector2d> positions;
+  for (const SceneBox& box : config_.boxes) positions.push_back(boxPositionAt(box, t));
+  paintSkyAndGround(config_, camera_, view, light, &frame);
+  std::vector<CandidateEdge> candidate_edges;
+  paintBoxes(config_, camera_, view, light, positions, &frame, &candidate_edges);
+  edgeTruth(candidate_edges, &frame);
+  boxTruth(config_, positions, &frame);
+  applySensor(config_, frame_index, &frame);
   return frame;
 }
 

@@ -15,7 +15,7 @@
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/ros.h>
 
-#include "conversions.h"
+#include "image_conversions.h"
 #include "error_throttle.h"
 #include "low_priority_worker.h"
 #include "processing_stats.h"

@@ -18,11 +18,12 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
-#include "conversions.h"
+#include "image_conversions.h"
+#include "landmark_conversions.h"
 #include "processing_stats.h"
 #include "rle_vision/SceneTruth.h"
 #include "rle_vision/color_convert.h"
-#include "rle_vision/config_files.h"
+#include "rle_vision/scene_file.h"
 #include "rle_vision/scene_simulator.h"
 
 namespace rle_vision {

@@ -23,7 +23,9 @@
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 
-#include "conversions.h"
+#include "blob_conversions.h"
+#include "color_range_conversions.h"
+#include "image_conversions.h"
 #include "error_throttle.h"
 #include "processing_stats.h"
 #include "startup_params.h"
@@ -31,7 +33,7 @@
 #include "rle_vision/CmvisionBlobs.h"
 #include "rle_vision/ColorRangeArray.h"
 #include "rle_vision/TrackerConfig.h"
-#include "rle_vision/config_files.h"
+#include "rle_vision/color_config.h"
 #include "rle_vision/latency_histogram.h"
 #include "rle_vision/overlay.h"
 #include "rle_vision/segmenter.h"

@@ -3,17 +3,20 @@
 // non-zero exit status at the end.
 //
 //   rle_vision_detect [--colors FILE] [--params FILE] [--annotate DIR] IMAGE...
-#include <cmath>
-#include <cstdio>
+//   rle_vision_detect --print-params
+#include <cstdlib>
 #include <iostream>
-#include <sstream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "rle_vision/config_files.h"
+#include "detect_json.h"
+#include "rle_vision/color_config.h"
+#include "rle_vision/data_files.h"
 #include "rle_vision/landmark_detector.h"
+#include "rle_vision/landmark_params_file.h"
 #include "rle_vision/overlay.h"
 #include "rle_vision/segmenter.h"
 
@@ -23,33 +26,54 @@ using namespace rle_vision;
 
 const char* kUsage =
     "usage: rle_vision_detect [--colors FILE] [--params FILE] [--annotate DIR] IMAGE...\n"
+    "       rle_vision_detect --print-params\n"
     "  --colors FILE    colour classes: colors.yaml or CMVision colors.txt (default: the package's config/colors.yaml)\n"
-    "  --params FILE    landmark parameters (default: the package's config/landmark.yaml values)\n"
+    "  --params FILE    landmark parameters (default: their defaults; see --print-params)\n"
     "  --annotate DIR   also write DIR/<image name>.png with blobs, lines and the horizon drawn\n"
-    "Prints one JSON object per image: blobs, lines and horizon (theta in radians, DESIGN.md conventions).\n";
+    "  --print-params   print every landmark parameter with its default, limits and meaning (YAML), and exit\n"
+    "Prints one JSON object per image: blobs, lines and horizon (theta in radians, x right, y down,\n"
+    "intercept on y below 45 deg and on x from there; see docs/DESIGN.md section 3).\n";
 
-std::string jsonString(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buffer[8];
-      std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
-      out += buffer;
+struct Arguments {
+  std::string colors_file = packageDataFile("config/colors.yaml");
+  std::string params_file, annotate_dir;
+  bool print_params = false;
+  std::vector<std::string> images;
+};
+
+// The arguments, or an exit status (usage errors: 2; --help: 0) in *exit_status.
+bool parseArguments(int argc, char** argv, Arguments* args, int* exit_status) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool has_value = i + 1 < argc;
+    if (arg == "--colors" || arg == "--params" || arg == "--annotate") {
+      if (!has_value) {
+        std::cerr << "rle_vision_detect: " << arg << " needs a value\n" << kUsage;
+        *exit_status = 2;
+        return false;
+      }
+      (arg == "--colors" ? args->colors_file : arg == "--params" ? args->params_file : args->annotate_dir) = argv[++i];
+    } else if (arg == "--print-params") {
+      args->print_params = true;
+    } else if (arg == "-h" || arg == "--help") {
+      std::cout << kUsage << "Default colours file: "
+                << (args->colors_file.empty() ? "(not found: give --colors)" : args->colors_file) << "\n";
+      *exit_status = 0;
+      return false;
+    } else if (!arg.empty() && arg[0] == '-') {
+      std::cerr << "rle_vision_detect: unknown option " << arg << "\n" << kUsage;
+      *exit_status = 2;
+      return false;
     } else {
-      out += c;
+      args->images.push_back(arg);
     }
   }
-  return out + "\"";
-}
-
-std::string number(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.4g", v);
-  return buffer;
+  if (args->images.empty() && !args->print_params) {
+    std::cerr << kUsage;
+    *exit_status = 2;
+    return false;
+  }
+  return true;
 }
 
 std::string baseName(const std::string& path) {
@@ -59,116 +83,78 @@ std::string baseName(const std::string& path) {
   return dot == std::string::npos ? name : name.substr(0, dot);
 }
 
-}  // namespace
+// Every image stands alone: the pipeline's steps on one image file.
+class ImageDetector {
+ public:
+  ImageDetector(const std::vector<ColorClass>& classes, const LandmarkOptions& options)
+      : table_(classes), options_(options) {}
 
-int main(int argc, char** argv) {
-  std::string colors_file = std::string(RLE_VISION_SOURCE_DIR) + "/config/colors.yaml";
-  std::string params_file, annotate_dir;
-  std::vector<std::string> images;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&](const char* name) -> std::string {
-      if (i + 1 >= argc) {
-        std::cerr << "rle_vision_detect: " << name << " needs a value\n" << kUsage;
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (arg == "--colors") {
-      colors_file = value("--colors");
-    } else if (arg == "--params") {
-      params_file = value("--params");
-    } else if (arg == "--annotate") {
-      annotate_dir = value("--annotate");
-    } else if (arg == "-h" || arg == "--help") {
-      std::cout << kUsage;
-      return 0;
-    } else if (!arg.empty() && arg[0] == '-') {
-      std::cerr << "rle_vision_detect: unknown option " << arg << "\n" << kUsage;
-      return 2;
-    } else {
-      images.push_back(arg);
-    }
-  }
-  if (images.empty()) {
-    std::cerr << kUsage;
-    return 2;
-  }
-
-  std::unique_ptr<ColorTable> table;
-  LandmarkOptions options;
-  try {
-    table = std::make_unique<ColorTable>(loadColorClasses(colors_file));
-    if (!params_file.empty()) options = loadLandmarkParams(params_file);
-  } catch (const std::exception& e) {
-    std::cerr << "rle_vision_detect: " << e.what() << "\n";
-    return 2;
-  }
-
-  Segmenter segmenter;
-  BlobTracker tracker;
-  LandmarkDetector detector;
-  int failures = 0;
-  for (const std::string& path : images) {
+  // Prints the image's JSON line (or its error); false on an error.
+  bool run(const std::string& path, const std::string& annotate_dir) {
     const cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
     if (image.empty()) {
-      std::cout << "{\"file\":" << jsonString(path) << ",\"error\":\"cannot read the image (missing, unreadable or not an image)\"}" << std::endl;
-      ++failures;
-      continue;
+      std::cout << errorJson(path, "cannot read the image (missing, unreadable or not an image)") << std::endl;
+      return false;
     }
     std::vector<Region> regions;
     std::vector<TrackedBlob> blobs;
     LandmarkResult result;
     try {
-      segmenter.segment(image, PixelFormat::BGR8, *table, &regions);
-      tracker.reset();  // every image stands alone
-      tracker.update(regions, 0.0, &blobs);
-      detector.detectInImage(image, options, &result);
+      segmenter_.segment(image, PixelFormat::BGR8, table_, &regions);
+      tracker_.reset();
+      tracker_.update(regions, 0.0, &blobs);
+      detector_.detectInImage(image, options_, &result);
     } catch (const std::exception& e) {
-      std::cout << "{\"file\":" << jsonString(path) << ",\"error\":" << jsonString(e.what()) << "}" << std::endl;
-      ++failures;
-      continue;
+      std::cout << errorJson(path, e.what()) << std::endl;
+      return false;
     }
-    std::ostringstream json;
-    json << "{\"file\":" << jsonString(path) << ",\"width\":" << image.cols << ",\"height\":" << image.rows << ",\"blobs\":[";
-    for (size_t i = 0; i < blobs.size(); ++i) {
-      const Region& r = blobs[i].region;
-      json << (i ? "," : "") << "{\"id\":" << blobs[i].id << ",\"color\":" << jsonString(table->classes()[r.label - 1].name)
-           << ",\"area\":" << r.area << ",\"cx\":" << number(r.cx) << ",\"cy\":" << number(r.cy) << ",\"left\":" << r.left
-           << ",\"top\":" << r.top << ",\"right\":" << r.right << ",\"bottom\":" << r.bottom << ",\"bottom_at_cx\":" << r.bottom_at_cx
-           << ",\"angle\":" << number(r.angle) << "}";
-    }
-    json << "],\"lines\":[";
-    for (size_t i = 0; i < result.lines.size(); ++i) {
-      const DetectedLine& l = result.lines[i];
-      json << (i ? "," : "") << "{\"theta\":" << number(l.line.theta) << ",\"intercept\":" << number(l.line.intercept)
-           << ",\"x1\":" << number(l.x1) << ",\"y1\":" << number(l.y1) << ",\"x2\":" << number(l.x2) << ",\"y2\":" << number(l.y2)
-           << ",\"votes\":" << l.votes << ",\"support\":" << l.support << "}";
-    }
-    const HorizonEstimate& h = result.horizon;
-    json << "],\"horizon\":{\"found\":" << (h.found ? "true" : "false");
-    if (h.found) {
-      double roll = 0, pitch = 0;
-      horizonAttitude(h.line, nullptr, &roll, &pitch);
-      json << ",\"theta\":" << number(h.line.theta) << ",\"intercept\":" << number(h.line.intercept) << ",\"x1\":" << number(h.x1)
-           << ",\"y1\":" << number(h.y1) << ",\"x2\":" << number(h.x2) << ",\"y2\":" << number(h.y2)
-           << ",\"confidence\":" << number(h.confidence) << ",\"roll\":" << number(roll);
-    }
-    json << "}}";
-    std::cout << json.str() << std::endl;
-
-    if (!annotate_dir.empty()) {
-      cv::Mat canvas = image.clone();
-      drawBlobs(&canvas, blobs, *table);
-      double roll = 0, pitch = 0;
-      if (h.found) horizonAttitude(h.line, nullptr, &roll, &pitch);
-      drawLandmarks(&canvas, result.lines, h, roll, pitch);
-      const std::string out = annotate_dir + "/" + baseName(path) + ".png";
-      if (!cv::imwrite(out, canvas)) {
-        std::cerr << "rle_vision_detect: cannot write " << out << "\n";
-        ++failures;
-      }
-    }
+    std::cout << detectionJson(path, image.cols, image.rows, blobs, table_, result) << std::endl;
+    return annotate_dir.empty() || annotate(image, blobs, result, annotate_dir + "/" + baseName(path) + ".png");
   }
+
+ private:
+  bool annotate(const cv::Mat& image, const std::vector<TrackedBlob>& blobs, const LandmarkResult& result,
+                const std::string& out) const {
+    cv::Mat canvas = image.clone();
+    drawBlobs(&canvas, blobs, table_);
+    double roll = 0, pitch = 0;
+    if (result.horizon.found) horizonAttitude(result.horizon.line, nullptr, &roll, &pitch);
+    drawLandmarks(&canvas, result.lines, result.horizon, roll, pitch);
+    if (cv::imwrite(out, canvas)) return true;
+    std::cerr << "rle_vision_detect: cannot write " << out << "\n";
+    return false;
+  }
+
+  ColorTable table_;
+  LandmarkOptions options_;
+  Segmenter segmenter_;
+  BlobTracker tracker_;
+  LandmarkDetector detector_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Arguments args;
+  int exit_status = 0;
+  if (!parseArguments(argc, argv, &args, &exit_status)) return exit_status;
+  if (args.print_params) {
+    std::cout << defaultLandmarkParamsYaml();
+    return 0;
+  }
+  std::unique_ptr<ImageDetector> detector;
+  try {
+    if (args.colors_file.empty()) {
+      throw ConfigError("config/colors.yaml not found (installed share/rle_vision, the source tree or "
+                        "$RLE_VISION_DATA_DIR): give --colors FILE");
+    }
+    const LandmarkOptions options = args.params_file.empty() ? LandmarkOptions() : loadLandmarkParams(args.params_file);
+    detector = std::make_unique<ImageDetector>(loadColorClasses(args.colors_file), options);
+  } catch (const std::exception& e) {
+    std::cerr << "rle_vision_detect: " << e.what() << "\n";
+    return 2;
+  }
+  int failures = 0;
+  for (const std::string& path : args.images) failures += detector->run(path, args.annotate_dir) ? 0 : 1;
   return failures == 0 ? 0 : 1;
 }

@@ -8,7 +8,9 @@
 
 #include "rle_vision/color_convert.h"
 #include "rle_vision/color_learning.h"
-#include "rle_vision/config_files.h"
+#include "rle_vision/color_learning_loop.h"
+#include "rle_vision/color_config.h"
+#include "rle_vision/scene_file.h"
 #include "rle_vision/segmenter.h"
 #include "test_helpers.h"
 
@@ -246,6 +248,55 @@ TEST(ColorLearner, ResumesFromRangesLearnedBefore) {
   for (int i = 0; i < 120; ++i) learner.update(empty.image, empty.landmarks, empty.objects, 5.0 + i / 30.0);
   EXPECT_EQ(learner.classes()[0].min, obstacleClasses()[0].min);
   EXPECT_EQ(learner.classes()[0].source, "config");
+}
+
+// The Landmark node's loop: changed ranges go out at once, then at most once per publish
+// period (the changes in between are not lost); switching learning off hands the configured
+// ranges back once; a restarted node resumes from the tracker's learned ranges.
+TEST(ColorLearningLoop, PublishesChangesAtMostOncePerPeriod) {
+  ColorLearningLoop loop(obstacleClasses());
+  const SyntheticFrame f = boxFrame(cv::Scalar(30, 30, 150));
+  const LearningOptions options;
+  ColorLearningLoop::Step step = loop.learn(f.image, f.landmarks, f.objects, 0.0, 100.0, options, 0.5);
+  ASSERT_TRUE(step.publish);
+  EXPECT_EQ(step.classes[0].source, "learned");
+  const Channels first_min = step.classes[0].min;
+  // The range keeps moving (blend 0.2 per frame) but the next message waits for the period.
+  int published = 0;
+  for (int i = 1; i <= 14; ++i) published += loop.learn(f.image, f.landmarks, f.objects, i / 30.0, 100.0 + i / 30.0, options, 0.5).publish;
+  EXPECT_EQ(published, 0);
+  step = loop.learn(f.image, f.landmarks, f.objects, 0.5, 100.5, options, 0.5);
+  ASSERT_TRUE(step.publish);
+  EXPECT_NE(step.classes[0].min, first_min);
+  // Off: the configured set, once.
+  step = loop.stop(options);
+  ASSERT_TRUE(step.publish);
+  EXPECT_EQ(step.classes[0].min, obstacleClasses()[0].min);
+  EXPECT_EQ(step.classes[0].source, "config");
+  EXPECT_FALSE(loop.stop(options).publish);
+  EXPECT_EQ(loop.learner().classes()[0].min, obstacleClasses()[0].min);  // starts over when on again
+}
+
+TEST(ColorLearningLoop, ResumesOnceFromTheTrackersLearnedRanges) {
+  ColorLearningLoop loop(obstacleClasses());
+  std::vector<ColorClass> earlier = obstacleClasses();
+  earlier[0].min = {{20, 90, 170}};
+  earlier[0].source = "learned";
+  loop.offerResume(earlier);
+  SyntheticFrame empty = boxFrame(cv::Scalar(50, 140, 40));
+  empty.landmarks.lines.clear();
+  ColorLearningLoop::Step step = loop.learn(empty.image, empty.landmarks, empty.objects, 0.0, 0.0, LearningOptions(), 0.5);
+  EXPECT_EQ(step.resumed, 1);
+  EXPECT_EQ(loop.learner().classes()[0].min, earlier[0].min);
+  // Offered again later (the latched topic once more): nothing changes any more.
+  loop.offerResume(obstacleClasses());
+  step = loop.learn(empty.image, empty.landmarks, empty.objects, 0.1, 0.1, LearningOptions(), 0.5);
+  EXPECT_EQ(step.resumed, 0);
+  EXPECT_EQ(loop.learner().classes()[0].min, earlier[0].min);
+  EXPECT_EQ(validateLearningLoopOptions(LearningLoopOptions()), "");
+  LearningLoopOptions nan;
+  nan.publish_period_s = NAN;
+  EXPECT_NE(validateLearningLoopOptions(nan), "");
 }
 
 TEST(ColorLearner, PersistentUnknownColoursBecomeLearnedClassesWhenAsked) {

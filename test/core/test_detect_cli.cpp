@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "rle_vision/config_files.h"
+#include "rle_vision/scene_file.h"
 #include "test_helpers.h"
 
 namespace rle_vision {

@@ -8,8 +8,9 @@
 
 #include <opencv2/calib3d.hpp>
 
-#include "rle_vision/config_files.h"
+#include "rle_vision/attitude_filter.h"
 #include "rle_vision/ground_projection.h"
+#include "rle_vision/scene_file.h"
 #include "rle_vision/landmark_detector.h"
 #include "rle_vision/scene_simulator.h"
 #include "test_helpers.h"
@@ -356,6 +357,61 @@ TEST(AttitudeFilter, GatesHoldsAndRestarts) {
   EXPECT_NE(validateAttitudeFilterOptions(options), "");
   options.smoothing = NAN;
   EXPECT_NE(validateAttitudeFilterOptions(options), "");
+}
+
+// The gait's sway between horizons 100 ms apart (the landmark node skipped two frames): the
+// timeline follows it, where a linear interpolation of the same horizons is off by 0.4 deg.
+TEST(AttitudeTimeline, FollowsTheGaitAcrossSkippedHorizons) {
+  AttitudeTimeline timeline;
+  auto roll_at = [](double t) { return 3 * kDeg * std::sin(2 * M_PI * t); };
+  auto pitch_at = [](double t) { return 20 * kDeg + 2 * kDeg * std::sin(4 * M_PI * t); };
+  // Horizons at 30 Hz for 2 s, then two frames of every three skipped.
+  std::vector<double> horizon_stamps;
+  for (int i = 0; i < 60; ++i) horizon_stamps.push_back(i / 30.0);
+  for (int i = 60; i <= 123; i += 3) horizon_stamps.push_back(i / 30.0);
+  for (double t : horizon_stamps) {
+    ASSERT_TRUE(timeline.addHorizon(true, roll_at(t), pitch_at(t), 0.9, t).valid);
+  }
+  double worst = 0, worst_linear = 0;
+  for (int i = 61; i < 120; ++i) {
+    if (i % 3 == 0) continue;
+    const double t = i / 30.0;
+    double roll = 0, pitch = 0;
+    ASSERT_EQ(timeline.attitudeAt(t, &roll, &pitch), AttitudeTimeline::Lookup::kFound);
+    worst = std::max({worst, std::abs(roll - roll_at(t)), std::abs(pitch - pitch_at(t))});
+    const double t0 = (i / 3) * 3 / 30.0, t1 = t0 + 0.1, f = (t - t0) / 0.1;
+    worst_linear = std::max(worst_linear, std::abs(pitch_at(t0) + f * (pitch_at(t1) - pitch_at(t0)) - pitch_at(t)));
+  }
+  EXPECT_LT(worst, 0.15 * kDeg);
+  EXPECT_GT(worst_linear, 0.3 * kDeg);
+  double roll = 0, pitch = 0;
+  EXPECT_EQ(timeline.attitudeAt(4.2, &roll, &pitch), AttitudeTimeline::Lookup::kNotYet);  // after the newest
+  EXPECT_EQ(timeline.attitudeAt(4.05, &roll, &pitch), AttitudeTimeline::Lookup::kNotYet);  // the end's rate unknown yet
+  EXPECT_EQ(timeline.attitudeAt(-0.5, &roll, &pitch), AttitudeTimeline::Lookup::kLost);  // before the oldest
+  std::printf("[ attitude timeline ] 100-ms gaps in the horizons: worst error %.3f deg (linear interpolation %.3f deg)\n",
+              worst / kDeg, worst_linear / kDeg);
+}
+
+TEST(AttitudeTimeline, LongGapsAndTimeGoingBackwards) {
+  AttitudeFilterOptions options;
+  options.max_hold_s = 0.5;
+  AttitudeTimeline timeline(options);
+  EXPECT_FALSE(timeline.addHorizon(true, 0.1, 0.3, 0.2, 0.0).valid);  // low confidence: no attitude yet
+  EXPECT_TRUE(timeline.addHorizon(true, 0.1, 0.3, 0.9, 1.0).valid);
+  EXPECT_TRUE(timeline.addHorizon(true, 0.1, 0.3, 0.9, 2.0).valid);  // after a gap: the filter restarts
+  double roll = 0, pitch = 0;
+  EXPECT_EQ(timeline.attitudeAt(1.5, &roll, &pitch), AttitudeTimeline::Lookup::kLost);  // no attitude inside the gap
+  EXPECT_EQ(timeline.attitudeAt(2.0, &roll, &pitch), AttitudeTimeline::Lookup::kFound);
+  EXPECT_DOUBLE_EQ(roll, 0.1);
+  // A rejected horizon still records the attitude moved on by the filter, with confidence 0.
+  const AttitudeTimeline::Update low = timeline.addHorizon(true, 0.1, 0.3, 0.1, 2.1);
+  EXPECT_TRUE(low.valid);
+  EXPECT_EQ(low.attitude.confidence, 0.0);
+  // A looped bag: time goes back, everything starts over.
+  const AttitudeTimeline::Update looped = timeline.addHorizon(true, -0.2, 0.1, 0.9, 0.5);
+  EXPECT_TRUE(looped.restarted);
+  EXPECT_TRUE(looped.valid);
+  EXPECT_EQ(timeline.attitudeAt(2.0, &roll, &pitch), AttitudeTimeline::Lookup::kNotYet);
 }
 
 }  // namespace

@@ -8,7 +8,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "line_matching.h"
-#include "rle_vision/config_files.h"
+#include "rle_vision/landmark_params_file.h"
+#include "rle_vision/scene_file.h"
 #include "rle_vision/landmark_detector.h"
 #include "test_helpers.h"
 
@@ -266,50 +267,46 @@ TEST(Horizon, AngleErrorOverTwoHundredWalkingGaitFrames) {
               found, median(angle_errors), median(roll_errors), median(pitch_errors));
 }
 
-TEST(LandmarkParams, ShippedFileHoldsTheDefaults) {
-  const LandmarkOptions file = loadLandmarkParams(test::sourcePath("config/landmark.yaml"));
+// --print-params writes every parameter of the table at its default; reading it back gives
+// the defaults, and the shipped file (all defaults) reads.
+TEST(LandmarkParams, DefaultsFileRoundTripsEveryParameter) {
+  const std::string text = defaultLandmarkParamsYaml();
+  const LandmarkOptions file = parseLandmarkParams(text, "defaults.yaml");
+  const LearningOptions learning = parseLearningParams(text, "defaults.yaml");
   const LandmarkOptions defaults;
-  EXPECT_EQ(file.edge_gain, defaults.edge_gain);
-  EXPECT_EQ(file.objects.gray_threshold, defaults.objects.gray_threshold);
-  EXPECT_EQ(file.objects.sharp_threshold, defaults.objects.sharp_threshold);
-  EXPECT_EQ(file.objects.min_object_px, defaults.objects.min_object_px);
-  EXPECT_EQ(file.objects.thin, defaults.objects.thin);
-  EXPECT_EQ(file.hough.min_votes, defaults.hough.min_votes);
-  EXPECT_EQ(file.hough.min_line_length_px, defaults.hough.min_line_length_px);
-  EXPECT_EQ(file.hough.sampling_margin, defaults.hough.sampling_margin);
-  EXPECT_EQ(file.hough.max_samples_per_object, defaults.hough.max_samples_per_object);
-  EXPECT_EQ(file.hough.max_rounds, defaults.hough.max_rounds);
-  EXPECT_EQ(file.hough.max_failed_peaks, defaults.hough.max_failed_peaks);
-  EXPECT_EQ(file.hough.min_pair_distance_px, defaults.hough.min_pair_distance_px);
-  EXPECT_EQ(file.hough.theta_bin_deg, defaults.hough.theta_bin_deg);
-  EXPECT_EQ(file.hough.intercept_bin_px, defaults.hough.intercept_bin_px);
-  EXPECT_EQ(file.hough.peak_angle_deg, defaults.hough.peak_angle_deg);
-  EXPECT_EQ(file.hough.peak_distance_px, defaults.hough.peak_distance_px);
-  EXPECT_EQ(file.hough.fit_distance_px, defaults.hough.fit_distance_px);
-  EXPECT_EQ(file.hough.max_gap_px, defaults.hough.max_gap_px);
-  EXPECT_EQ(file.hough.min_support_ratio, defaults.hough.min_support_ratio);
-  EXPECT_EQ(file.hough.seed, defaults.hough.seed);
-  EXPECT_EQ(file.horizon.min_piece_length_px, defaults.horizon.min_piece_length_px);
-  EXPECT_EQ(file.horizon.max_angle_deg, defaults.horizon.max_angle_deg);
-  EXPECT_EQ(file.horizon.merge_angle_deg, defaults.horizon.merge_angle_deg);
-  EXPECT_EQ(file.horizon.merge_distance_px, defaults.horizon.merge_distance_px);
-  EXPECT_EQ(file.horizon.min_coverage, defaults.horizon.min_coverage);
+  const LearningOptions learning_defaults;
+  int keys = 0;
+#define RLE_EDGE_PARAM(key, member, type, default_value, min, max, description) \
+  EXPECT_EQ(file.member, defaults.member) << #key;                            \
+  EXPECT_NE(text.find(#key ": "), std::string::npos) << #key;                 \
+  ++keys;
+#define RLE_OBJECTS_PARAM(key, member, type, default_value, min, max, description) \
+  EXPECT_EQ(file.objects.member, defaults.objects.member) << #key;               \
+  EXPECT_NE(text.find(#key ": "), std::string::npos) << #key;                    \
+  ++keys;
+#define RLE_HOUGH_PARAM(key, member, type, default_value, min, max, description) \
+  EXPECT_EQ(file.hough.member, defaults.hough.member) << #key;                 \
+  EXPECT_NE(text.find(#key ": "), std::string::npos) << #key;                  \
+  ++keys;
+#define RLE_HORIZON_PARAM(key, member, type, default_value, min, max, description) \
+  EXPECT_EQ(file.horizon.member, defaults.horizon.member) << #key;               \
+  EXPECT_NE(text.find(#key ": "), std::string::npos) << #key;                    \
+  ++keys;
+#define RLE_LEARNING_PARAM(key, member, type, default_value, min, max, description) \
+  EXPECT_EQ(learning.member, learning_defaults.member) << #key;                   \
+  EXPECT_NE(text.find(#key ": "), std::string::npos) << #key;                     \
+  ++keys;
+#include "rle_vision/landmark_params.def"
+  EXPECT_EQ(keys, 36);
+  // Values that differ from the defaults are read, too.
+  EXPECT_EQ(parseLandmarkParams("gray_threshold: 40\nthin_edges: false\nseed: 7\n", "l.yaml").objects.gray_threshold, 40);
+  EXPECT_EQ(parseLandmarkParams("seed: 7\n", "l.yaml").hough.seed, 7u);
+  EXPECT_FALSE(parseLandmarkParams("thin_edges: false\n", "l.yaml").objects.thin);
+  EXPECT_NO_THROW(loadLandmarkParams(test::sourcePath("config/landmark.yaml")));
+  EXPECT_NO_THROW(loadLearningParams(test::sourcePath("config/landmark.yaml")));
 }
 
-TEST(LandmarkParams, ShippedFileHoldsTheLearningDefaults) {
-  const LearningOptions file = loadLearningParams(test::sourcePath("config/landmark.yaml"));
-  const LearningOptions defaults;
-  EXPECT_EQ(file.blend, defaults.blend);
-  EXPECT_EQ(file.match_gate, defaults.match_gate);
-  EXPECT_EQ(file.max_sigma, defaults.max_sigma);
-  EXPECT_EQ(file.mode_radius, defaults.mode_radius);
-  EXPECT_EQ(file.min_region_px, defaults.min_region_px);
-  EXPECT_EQ(file.shrink_px, defaults.shrink_px);
-  EXPECT_EQ(file.horizon_margin_px, defaults.horizon_margin_px);
-  EXPECT_EQ(file.stale_after_s, defaults.stale_after_s);
-  EXPECT_EQ(file.create_classes, defaults.create_classes);
-  EXPECT_EQ(file.persist_frames, defaults.persist_frames);
-  EXPECT_EQ(file.min_new_class_px, defaults.min_new_class_px);
+TEST(LandmarkParams, LearningKeysAreCheckedLikeTheOthers) {
   EXPECT_EQ(parseLearningParams("learning_blend: 0.5\nlearning_create_classes: true\n", "l.yaml").blend, 0.5);
   EXPECT_TRUE(parseLearningParams("learning_create_classes: true\n", "l.yaml").create_classes);
   EXPECT_THROW(parseLearningParams("learning_blend: .nan\n", "l.yaml"), ConfigError);
@@ -332,6 +329,8 @@ TEST(LandmarkParams, BrokenFilesFailWithTheLine) {
     EXPECT_NE(std::string(e.what()).find("sharp_threshold must be >= gray_threshold"), std::string::npos);
   }
   EXPECT_THROW(parseLandmarkParams("edge_gain: .nan\n", "l.yaml"), ConfigError);
+  EXPECT_THROW(parseLandmarkParams("min_votes: 5.5\n", "l.yaml"), ConfigError);  // a count is whole
+  EXPECT_THROW(parseLandmarkParams("theta_bin_deg: 20\n", "l.yaml"), ConfigError);  // beyond the table's limit
 }
 
 }  // namespace
@@ -391,7 +390,7 @@ TEST(RleHough, FindsSimulatedEdgesOfThirtyPixelsOrMore) {
   }
   std::printf("[ simulated ] %d of %d edges >= 30 px found within 1 deg and 2 px\n", found, truths);
   EXPECT_GT(truths, 100);
-  // DESIGN.md's accuracy target on simulator ground truth: line recall >= 0.95.
+  // docs/DESIGN.md's accuracy target on simulator ground truth: line recall >= 0.95.
   EXPECT_GE(static_cast<double>(found) / truths, 0.95);
 }
 

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "rle_vision/latest_mailbox.h"
+#include "rle_vision/startup_wait.h"
 
 namespace rle_vision {
 namespace {
@@ -51,6 +52,23 @@ TEST(LatestMailbox, CloseWakesAWaitingConsumer) {
   consumer.join();
   EXPECT_TRUE(returned);
   EXPECT_FALSE(mailbox.put(1));  // puts after close are harmless
+}
+
+}  // namespace
+}  // namespace rle_vision
+
+namespace rle_vision {
+namespace {
+
+// The landmark node's start-up wait for camera_info: from the first call, for its duration.
+TEST(StartupWait, WaitsFromTheFirstCallForItsDuration) {
+  StartupWait wait(1.0);
+  EXPECT_DOUBLE_EQ(wait.remaining(50.0), 1.0);  // not started yet
+  EXPECT_TRUE(wait.waiting(100.0));
+  EXPECT_DOUBLE_EQ(wait.remaining(100.25), 0.75);
+  EXPECT_TRUE(wait.waiting(100.9));
+  EXPECT_FALSE(wait.waiting(101.0));
+  EXPECT_DOUBLE_EQ(wait.remaining(102.0), 0.0);
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
-#include "rle_vision/config_files.h"
+#include "rle_vision/scene_file.h"
 #include "rle_vision/scene_simulator.h"
 #include "test_helpers.h"
 

@@ -6,7 +6,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "rle_vision/color_convert.h"
-#include "rle_vision/config_files.h"
+#include "rle_vision/color_config.h"
+#include "rle_vision/scene_file.h"
 #include "rle_vision/segmenter.h"
 #include "test_helpers.h"
 

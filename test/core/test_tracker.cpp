@@ -5,7 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "rle_vision/blob_tracker.h"
-#include "rle_vision/config_files.h"
+#include "rle_vision/color_config.h"
+#include "rle_vision/scene_file.h"
 #include "rle_vision/segmenter.h"
 #include "test_helpers.h"
 

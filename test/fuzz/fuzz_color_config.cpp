@@ -5,7 +5,7 @@
 #include <string>
 
 #include "rle_vision/color_table.h"
-#include "rle_vision/config_files.h"
+#include "rle_vision/color_config.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

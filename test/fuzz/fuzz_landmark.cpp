@@ -9,7 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "rle_vision/color_learning.h"
-#include "rle_vision/config_files.h"
+#include "rle_vision/config_error.h"
 #include "rle_vision/landmark_detector.h"
 
 using namespace rle_vision;

@@ -3,7 +3,8 @@
 #include <cstdint>
 #include <string>
 
-#include "rle_vision/config_files.h"
+#include "rle_vision/landmark_params_file.h"
+#include "rle_vision/scene_file.h"
 #include "rle_vision/scene_simulator.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

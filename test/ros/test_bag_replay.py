@@ -84,7 +84,7 @@ class BagReplayTest(unittest.TestCase):
 
         play = subprocess.Popen(['roslaunch', 'rle_vision', 'play.launch', 'bag:=' + bag_path, 'camera:=replay',
                                  'image_topic:=/camera/image_raw', 'camera_info_topic:=/camera/camera_info',
-                                 'learning:=false', 'start_delay_s:=4'],
+                                 'learning:=false', 'start_delay_s:=4', 'tf_topic:=/replay/tf'],
                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
         try:
             replay = self.outputs['replay']

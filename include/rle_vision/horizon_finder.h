@@ -5,16 +5,15 @@
 
 #include <vector>
 
-#include "rle_vision/rle_hough.h"
+#include "rle_vision/detected_line.h"
 
 namespace rle_vision {
 
+// The parameters (min_piece_length_px, max_angle_deg, merge_angle_deg, merge_distance_px,
+// min_coverage) are the HORIZON group of landmark_params.def, with their defaults and meanings.
 struct HorizonOptions {
-  double min_piece_length_px = 40;  // shorter lines are not horizon pieces
-  double max_angle_deg = 40;        // steeper lines are not horizon pieces
-  double merge_angle_deg = 2;       // pieces this parallel ...
-  double merge_distance_px = 4;     // ... and this close to each other's line are one line
-  double min_coverage = 0.4;        // the merged pieces must cover this share of the line's run across the image
+#define RLE_HORIZON_PARAM(key, member, type, default_value, min, max, description) type member = default_value;
+#include "rle_vision/landmark_params.def"
 };
 
 struct HorizonEstimate {

@@ -1,4 +1,4 @@
-#include "rle_vision/horizon.h"
+#include "rle_vision/horizon_finder.h"
 
 #include <algorithm>
 #include <cmath>

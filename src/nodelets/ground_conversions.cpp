@@ -1,0 +1,66 @@
+#include "ground_conversions.h"
+
+#include <algorithm>
+
+#include <tf2/LinearMath/Quaternion.h>
+#include <tf2_geometry_msgs/tf2_geometry_msgs.h>
+
+namespace rle_vision {
+
+AttitudeFilterOptions attitudeFilterFromConfig(const GroundProjectorConfig& config) {
+  AttitudeFilterOptions o;
+  o.smoothing = config.attitude_smoothing;
+  o.min_confidence = config.horizon_min_confidence;
+  o.max_jump_deg = config.attitude_max_jump_deg;
+  o.max_rejected = config.attitude_max_rejected;
+  o.max_hold_s = config.attitude_max_hold_s;
+  return o;
+}
+
+BlobOutline outlineFromBlob(const Blob& blob) {
+  BlobOutline outline;
+  outline.left = static_cast<int>(blob.left);
+  outline.top = static_cast<int>(blob.top);
+  outline.right = static_cast<int>(blob.right);
+  outline.bottom = static_cast<int>(blob.bottom);
+  outline.contact_x = blob.cx;
+  outline.contact_y = static_cast<int>(blob.bottom_at_cx);
+  return outline;
+}
+
+Obstacle obstacleToMsg(const Blob& blob, const GroundObstacle& obstacle, bool occluded) {
+  Obstacle o;
+  o.blob_id = blob.id;
+  o.color = blob.color;
+  o.position.x = obstacle.position.x();
+  o.position.y = obstacle.position.y();
+  o.position.z = 0;
+  o.width_m = static_cast<float>(obstacle.width_m);
+  o.height_m = static_cast<float>(obstacle.height_m);
+  o.range_m = static_cast<float>(obstacle.range_m);
+  o.bearing_rad = static_cast<float>(obstacle.bearing_rad);
+  o.clipped = obstacle.clipped;
+  o.occluded = occluded;
+  return o;
+}
+
+geometry_msgs::Quaternion rollPitchYawToMsg(double roll, double pitch, double yaw) {
+  tf2::Quaternion q;
+  q.setRPY(roll, pitch, yaw);
+  return tf2::toMsg(q);
+}
+
+sensor_msgs::Imu attitudeImuMsg(const geometry_msgs::QuaternionStamped& attitude, const std::string& camera_frame,
+                                double stddev_rad, double confidence) {
+  sensor_msgs::Imu imu;
+  imu.header.stamp = attitude.header.stamp;
+  imu.header.frame_id = camera_frame;
+  imu.orientation = attitude.quaternion;
+  const double variance = stddev_rad * stddev_rad / std::max(confidence, 0.01);
+  imu.orientation_covariance = {variance, 0, 0, 0, variance, 0, 0, 0, 1e6};
+  imu.angular_velocity_covariance[0] = -1;
+  imu.linear_acceleration_covariance[0] = -1;
+  return imu;
+}
+
+}  // namespace rle_vision

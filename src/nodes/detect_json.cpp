@@ -1,0 +1,84 @@
+#include "detect_json.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace rle_vision {
+namespace {
+
+std::string number(double v) {
+  if (!std::isfinite(v)) return "null";
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.4g", v);
+  return buffer;
+}
+
+void blobsJson(std::ostringstream& json, const std::vector<TrackedBlob>& blobs, const ColorTable& table) {
+  for (size_t i = 0; i < blobs.size(); ++i) {
+    const Region& r = blobs[i].region;
+    json << (i ? "," : "") << "{\"id\":" << blobs[i].id << ",\"color\":" << jsonString(table.classes()[r.label - 1].name)
+         << ",\"area\":" << r.area << ",\"cx\":" << number(r.cx) << ",\"cy\":" << number(r.cy) << ",\"left\":" << r.left
+         << ",\"top\":" << r.top << ",\"right\":" << r.right << ",\"bottom\":" << r.bottom << ",\"bottom_at_cx\":" << r.bottom_at_cx
+         << ",\"angle\":" << number(r.angle) << "}";
+  }
+}
+
+void linesJson(std::ostringstream& json, const std::vector<DetectedLine>& lines) {
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const DetectedLine& l = lines[i];
+    json << (i ? "," : "") << "{\"theta\":" << number(l.line.theta) << ",\"intercept\":" << number(l.line.intercept)
+         << ",\"x1\":" << number(l.x1) << ",\"y1\":" << number(l.y1) << ",\"x2\":" << number(l.x2) << ",\"y2\":" << number(l.y2)
+         << ",\"votes\":" << l.votes << ",\"support\":" << l.support << "}";
+  }
+}
+
+void horizonJson(std::ostringstream& json, const HorizonEstimate& h) {
+  json << "{\"found\":" << (h.found ? "true" : "false");
+  if (h.found) {
+    double roll = 0, pitch = 0;
+    horizonAttitude(h.line, nullptr, &roll, &pitch);
+    json << ",\"theta\":" << number(h.line.theta) << ",\"intercept\":" << number(h.line.intercept) << ",\"x1\":" << number(h.x1)
+         << ",\"y1\":" << number(h.y1) << ",\"x2\":" << number(h.x2) << ",\"y2\":" << number(h.y2)
+         << ",\"confidence\":" << number(h.confidence) << ",\"roll\":" << number(roll);
+  }
+  json << "}";
+}
+
+}  // namespace
+
+std::string jsonString(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buffer[8];
+      std::snprintf(buffer, sizeof(buffer), "\\u%04x", c);
+      out += buffer;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+std::string detectionJson(const std::string& file, int width, int height, const std::vector<TrackedBlob>& blobs,
+                          const ColorTable& table, const LandmarkResult& result) {
+  std::ostringstream json;
+  json << "{\"file\":" << jsonString(file) << ",\"width\":" << width << ",\"height\":" << height << ",\"blobs\":[";
+  blobsJson(json, blobs, table);
+  json << "],\"lines\":[";
+  linesJson(json, result.lines);
+  json << "],\"horizon\":";
+  horizonJson(json, result.horizon);
+  json << "}";
+  return json.str();
+}
+
+std::string errorJson(const std::string& file, const std::string& error) {
+  return "{\"file\":" + jsonString(file) + ",\"error\":" + jsonString(error) + "}";
+}
+
+}  // namespace rle_vision
