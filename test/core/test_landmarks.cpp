@@ -276,27 +276,20 @@ TEST(LandmarkParams, DefaultsFileRoundTripsEveryParameter) {
   const LandmarkOptions defaults;
   const LearningOptions learning_defaults;
   int keys = 0;
-#define RLE_EDGE_PARAM(key, member, type, default_value, min, max, description) \
-  EXPECT_EQ(file.member, defaults.member) << #key;                            \
-  EXPECT_NE(text.find(#key ": "), std::string::npos) << #key;                 \
+#define RLE_EXPECT_READ_BACK(key, read, expected)              \
+  EXPECT_EQ(read, expected) << #key;                            \
+  EXPECT_NE(text.find(#key ": "), std::string::npos) << #key;   \
   ++keys;
-#define RLE_OBJECTS_PARAM(key, member, type, default_value, min, max, description) \
-  EXPECT_EQ(file.objects.member, defaults.objects.member) << #key;               \
-  EXPECT_NE(text.find(#key ": "), std::string::npos) << #key;                    \
-  ++keys;
-#define RLE_HOUGH_PARAM(key, member, type, default_value, min, max, description) \
-  EXPECT_EQ(file.hough.member, defaults.hough.member) << #key;                 \
-  EXPECT_NE(text.find(#key ": "), std::string::npos) << #key;                  \
-  ++keys;
-#define RLE_HORIZON_PARAM(key, member, type, default_value, min, max, description) \
-  EXPECT_EQ(file.horizon.member, defaults.horizon.member) << #key;               \
-  EXPECT_NE(text.find(#key ": "), std::string::npos) << #key;                    \
-  ++keys;
-#define RLE_LEARNING_PARAM(key, member, type, default_value, min, max, description) \
-  EXPECT_EQ(learning.member, learning_defaults.member) << #key;                   \
-  EXPECT_NE(text.find(#key ": "), std::string::npos) << #key;                     \
-  ++keys;
+#define RLE_EDGE_PARAM(key, member, type, d, min, max, doc) RLE_EXPECT_READ_BACK(key, file.member, defaults.member)
+#define RLE_OBJECTS_PARAM(key, member, type, d, min, max, doc) \
+  RLE_EXPECT_READ_BACK(key, file.objects.member, defaults.objects.member)
+#define RLE_HOUGH_PARAM(key, member, type, d, min, max, doc) RLE_EXPECT_READ_BACK(key, file.hough.member, defaults.hough.member)
+#define RLE_HORIZON_PARAM(key, member, type, d, min, max, doc) \
+  RLE_EXPECT_READ_BACK(key, file.horizon.member, defaults.horizon.member)
+#define RLE_LEARNING_PARAM(key, member, type, d, min, max, doc) \
+  RLE_EXPECT_READ_BACK(key, learning.member, learning_defaults.member)
 #include "rle_vision/landmark_params.def"
+#undef RLE_EXPECT_READ_BACK
   EXPECT_EQ(keys, 36);
   // Values that differ from the defaults are read, too.
   EXPECT_EQ(parseLandmarkParams("gray_threshold: 40\nthin_edges: false\nseed: 7\n", "l.yaml").objects.gray_threshold, 40);
