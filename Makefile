@@ -5,7 +5,7 @@ ARGS ?=
 JOBS ?= 2
 export JOBS
 
-.PHONY: all deps build demo test test-asan test-core test-install fuzz bench bench-latency screenshot clean
+.PHONY: all deps build demo test test-asan test-core test-install fuzz bench eval bench-latency screenshot clean
 
 all: build
 
@@ -35,6 +35,9 @@ fuzz: deps
 
 bench: build
 	@scripts/bench.sh
+
+eval: build
+	@scripts/eval.sh
 
 bench-latency: build
 	@scripts/bench_latency.sh

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "rle_vision/camera_model.h"
+#include "horizon_metrics.h"
 #include "rle_vision/line_geometry.h"
 
 namespace rle_vision {
@@ -117,6 +118,37 @@ TEST(CameraModel, LevelCameraSeesTheHorizonThroughThePrincipalPoint) {
   EXPECT_NEAR(lineFromHomogeneous(a, b, c).intercept, camera.cy - camera.fy * std::tan(10 * kDeg), 1e-9);
   // Looking straight down there is no horizon.
   EXPECT_FALSE(horizonFromUp(camera, opticalToBaseRotation(0, M_PI / 2, 0).transpose() * Eigen::Vector3d::UnitZ(), &a, &b, &c));
+}
+
+}  // namespace
+}  // namespace rle_vision
+
+// make eval's horizon criterion (bench/horizon_metrics.h) on known lines.
+namespace rle_vision {
+namespace {
+
+TEST(HorizonMetrics, HesseDistanceAndThePassCriterion) {
+  const int w = 480, h = 480;
+  eval::HorizonLabel label;
+  label.slope = 0;
+  label.offset = 0.5;  // y = 240, through the image centre (239.5) half a pixel below
+  const ImageLine truth = label.line(h);
+  EXPECT_NEAR(eval::hesseDistanceFromCentre(truth, w, h), 0.5, 1e-9);
+  // The same line described the other way round compares equal.
+  EXPECT_NEAR(eval::hesseDistanceFromCentre(lineThroughPoints(400, 240, 10, 240), w, h), 0.5, 1e-9);
+  // 20 px lower and 3 deg tilted about the centre: passes (< 24 px, < 5 deg).
+  const double t = 3 * M_PI / 180;
+  const ImageLine tilted = lineThroughPointWithAngle(239.5, 259.5, t);
+  const eval::HorizonError e = eval::horizonError(tilted, truth, w, h);
+  EXPECT_NEAR(e.angle_deg, 3.0, 1e-9);
+  EXPECT_NEAR(e.distance_px, 20 * std::cos(t) - 0.5, 1e-6);
+  EXPECT_TRUE(eval::passes(e, h));
+  EXPECT_FALSE(eval::passes(eval::horizonError(lineThroughPointWithAngle(239.5, 265.5, 0), truth, w, h), h));
+  EXPECT_FALSE(eval::passes(eval::horizonError(lineThroughPointWithAngle(239.5, 239.5, 6 * M_PI / 180), truth, w, h), h));
+  // A segment on it: long enough, parallel within 2 deg, its centre within 3% H.
+  EXPECT_TRUE(eval::segmentOnHorizon(100, 245, 200, 247, truth, h));
+  EXPECT_FALSE(eval::segmentOnHorizon(100, 245, 130, 245, truth, h));  // 30 px: too short
+  EXPECT_FALSE(eval::segmentOnHorizon(100, 260, 200, 260, truth, h));  // 20 px off
 }
 
 }  // namespace
