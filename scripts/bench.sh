@@ -7,4 +7,8 @@ cd "$WS" && catkin_make -DRLE_VISION_BUILD_BENCHMARKS=ON -j"${JOBS:-2}" rle_visi
 mkdir -p "$ROOT/bench/results"
 "$WS/devel/lib/rle_vision/rle_vision_bench_tracker" "$ROOT" "$ROOT/bench/results/tracker.json"
 echo
-"$WS/devel/lib/rle_vision/rle_vision_bench_landmark" "$ROOT" "$ROOT/bench/results/landmark.json"
+# Real frames for the landmark timing: make eval's folder, when it is there.
+real_dir="${EVAL_DIR:-$ROOT/../shared/data/uav_horizon}"
+real_frames=()
+[[ -f "$real_dir/label.csv" ]] && real_frames=("$real_dir")
+"$WS/devel/lib/rle_vision/rle_vision_bench_landmark" "$ROOT" "$ROOT/bench/results/landmark.json" "${real_frames[@]}"

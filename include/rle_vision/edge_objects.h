@@ -15,8 +15,8 @@ namespace rle_vision {
 enum EdgeClass : uint8_t { kNoEdge = 0, kGrayEdge = 1, kSharpEdge = 2 };
 
 // Edge objects are the connected edges; with `thin`, an object holds the crests of its edges.
-// The parameters (gray_threshold, sharp_threshold, min_object_px, thin) are the OBJECTS group
-// of landmark_params.def, with their defaults and meanings.
+// The parameters (gray_threshold, sharp_threshold, min_object_px, thin, adaptive, ...) are the
+// OBJECTS group of landmark_params.def, with their defaults and meanings.
 struct EdgeObjectOptions {
 #define RLE_OBJECTS_PARAM(key, member, type, default_value, min, max, description) type member = default_value;
 #include "rle_vision/landmark_params.def"
@@ -48,9 +48,13 @@ class EdgeObjectFinder {
   // Pixels and runs the objects are made of (crests when thinning), before the size filter.
   uint64_t edgePixels() const { return edge_pixels_; }
   uint64_t runCount() const { return held_runs_; }
+  // The gray band's lowest threshold in the last find() (every tile's with adaptive edges).
+  uint8_t grayThreshold() const { return used_gray_; }
 
  private:
-  void encodeEdges(const cv::Mat& edges, uint8_t gray, uint8_t sharp, std::vector<Run>* runs);
+  void grayThresholds(const cv::Mat& edges, const EdgeObjectOptions& options);
+  void rowClasses(const uint8_t* edges, int width, int y, uint8_t sharp);
+  void encodeEdges(const cv::Mat& edges, uint8_t sharp, std::vector<Run>* runs);
   void crestRuns(const cv::Mat& edges, uint8_t gray, uint8_t sharp);
   void collectObjects(const std::vector<Run>& held, uint32_t min_object_px);
   void groupRuns(const std::vector<Run>& held);
@@ -64,6 +68,9 @@ class EdgeObjectFinder {
   std::vector<EdgeObject> objects_;
   RegionBuilder builder_;
   uint64_t edge_pixels_ = 0;
+  uint8_t used_gray_ = 0;
+  int tile_ = 1, tile_cols_ = 1;
+  std::vector<uint8_t> tile_gray_;  // the gray band's threshold per tile, row-major
 };
 
 }  // namespace rle_vision

@@ -38,19 +38,29 @@ struct LandmarkResult {
 // Holds all buffers; reuse one instance per thread.
 class LandmarkDetector {
  public:
-  // From a colour (CV_8UC3) or gray (CV_8UC1) image: runs the 5x5 Sobel first.
+  // From a colour (CV_8UC3) or gray (CV_8UC1) image: runs the 5x5 Sobel first. The horizon
+  // comes from region evidence and edges (HorizonDetector; a gray image's evidence is its
+  // brightness alone).
   void detectInImage(const cv::Mat& image, const LandmarkOptions& options, LandmarkResult* result);
-  // From an edge image (CV_8UC1, e.g. the EdgeDetector's output).
+  // From a colour image (CV_8UC3, BGR) and its edge image (CV_8UC1, the EdgeDetector's output
+  // for it, at options.edge_gain). Without a usable `bgr` (empty, or another size) the lines
+  // are found but no horizon: it cannot be weighed, and a horizon from lines alone locks onto
+  // field lines indoors.
+  void detect(const cv::Mat& bgr, const cv::Mat& edges, const LandmarkOptions& options, LandmarkResult* result);
+  // From an edge image alone, as the paper: the horizon from the lines (findHorizon).
   void detectInEdges(const cv::Mat& edges, const LandmarkOptions& options, LandmarkResult* result);
 
   const cv::Mat& edges() const { return edges_; }
   const EdgeObjectFinder& edgeObjects() const { return finder_; }
 
  private:
+  void findLines(const cv::Mat& edges, const LandmarkOptions& options, LandmarkResult* result);
+
   Sobel5 sobel_;
   EdgeObjectFinder finder_;
   RleHough hough_;
-  cv::Mat edges_;
+  HorizonDetector horizon_;
+  cv::Mat edges_, gray_as_bgr_;
 };
 
 // Camera roll and pitch from a horizon (REP 103). Without a camera model (nullptr or invalid)

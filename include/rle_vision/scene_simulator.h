@@ -43,6 +43,11 @@ struct SceneConfig {
   double gait_yaw_amplitude_deg = 2;
   double gait_bob_amplitude_m = 0.01;
   Channels ground_rgb{{40, 140, 50}};
+  // Real ground is textured (grass, carpet, soil): its brightness varies by up to
+  // +-ground_texture_contrast (a share) in blotches of ground_texture_grain_m, fixed on the
+  // ground, fading where a pixel covers several blotches (far away). 0: flat colour.
+  double ground_texture_contrast = 0;
+  double ground_texture_grain_m = 0.03;
   Channels sky_rgb{{150, 200, 240}};
   // Lighting: gain and per-channel colour cast move linearly from start to end over
   // drift_duration_s, then hold (0 duration: no drift).
@@ -91,6 +96,9 @@ struct SimFrame {
   cv::Mat labels;  // CV_8UC1: kGroundLabel, kSkyLabel, or kFirstBoxLabel + box index
   std::vector<BoxTruth> boxes;
   std::vector<EdgeTruth> edges;  // visible straight edges with contrast >= kMinEdgeContrast
+  // Every visible straight edge down to a faint step (contrast >= kMinFaintContrast): a line
+  // detected along one of these is on a real edge of the scene, however weak.
+  std::vector<EdgeTruth> faint_edges;
   ImageLine horizon;
   bool horizon_visible = false;
   CameraPose pose;
@@ -104,6 +112,7 @@ class SceneSimulator {
   static constexpr uint8_t kFirstBoxLabel = 2;
   // Colour step (largest channel difference, 8-bit units) that makes an edge count as visible.
   static constexpr double kMinEdgeContrast = 30;
+  static constexpr double kMinFaintContrast = 6;
 
   // Throws std::invalid_argument when the configuration is unusable (the reason says why).
   explicit SceneSimulator(const SceneConfig& config);
@@ -119,6 +128,7 @@ class SceneSimulator {
  private:
   SceneConfig config_;
   PinholeCamera camera_;
+  std::vector<float> texture_lattice_;  // the ground texture's random values, kTextureLattice^2
 };
 
 // Reason the configuration is unusable, or "" when it is fine.

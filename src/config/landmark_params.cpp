@@ -51,11 +51,15 @@ void read(const std::string& origin, const YAML::Node& map, const char* key, T* 
 }
 
 // A default value as YAML writes it (bools are spelled out by the caller).
+// The shortest text that reads back as the same double (0.4, not 0.40000000000000002).
 std::string yamlNumber(double value) {
-  std::ostringstream text;
-  text.precision(17);
-  text << value;
-  return text.str();
+  for (int precision = 15; precision <= 17; ++precision) {
+    std::ostringstream text;
+    text.precision(precision);
+    text << value;
+    if (precision == 17 || std::stod(text.str()) == value) return text.str();
+  }
+  return {};
 }
 
 YAML::Node parseChecked(const std::string& text, const std::string& origin) {

@@ -62,11 +62,13 @@ void EdgeObjectFinder::find(const cv::Mat& edges, const EdgeObjectOptions& optio
   if (edges.empty() || edges.type() != CV_8UC1) {
     throw std::invalid_argument("edge objects need a non-empty CV_8UC1 edge image");
   }
-  const uint8_t gray = std::max<uint8_t>(1, options.gray_threshold);  // 0 would make every pixel an edge
-  const uint8_t sharp = std::max(gray, options.sharp_threshold);
+  grayThresholds(edges, options);
+  const uint8_t gray = used_gray_;
+  const uint8_t sharp = std::max(options.gray_threshold, options.sharp_threshold);
+
   // Objects are the connected edges as they are (a thin bar's two edges are one object); with
   // thinning, the runs they hold are their crests.
-  encodeEdges(edges, gray, sharp, &runs_);
+  encodeEdges(edges, sharp, &runs_);
   builder_.build(&runs_, row_starts_, options.connectivity, {}, &regions_, Joining::kAnyLabel);
   object_of_root_.assign(runs_.size(), -1);
   for (size_t i = 0; i < regions_.size(); ++i) object_of_root_[regions_[i].root_run] = static_cast<int32_t>(i);
@@ -77,24 +79,63 @@ void EdgeObjectFinder::find(const cv::Mat& edges, const EdgeObjectOptions& optio
   groupRuns(held);
 }
 
-void EdgeObjectFinder::encodeEdges(const cv::Mat& edges, uint8_t gray, uint8_t sharp, std::vector<Run>* runs) {
+void EdgeObjectFinder::grayThresholds(const cv::Mat& edges, const EdgeObjectOptions& o) {
+  const uint8_t fixed = std::max<uint8_t>(1, o.gray_threshold);  // 0 would make every pixel an edge
+  tile_ = std::max(1, (std::min(edges.rows, edges.cols) + o.tiles - 1) / std::max(1, o.tiles));
+  tile_cols_ = (edges.cols + tile_ - 1) / tile_;
+  const int tile_rows = (edges.rows + tile_ - 1) / tile_;
+  tile_gray_.assign(static_cast<size_t>(tile_rows) * tile_cols_, fixed);
+  used_gray_ = fixed;
+  if (!o.adaptive) return;
+  // Per tile, the median edge value (every second pixel): the noise and texture an edge must
+  // stand out from.
+  used_gray_ = 255;
+  for (int ty = 0; ty < tile_rows; ++ty) {
+    for (int tx = 0; tx < tile_cols_; ++tx) {
+      int histogram[256] = {0}, samples = 0;
+      for (int y = ty * tile_; y < std::min(edges.rows, (ty + 1) * tile_); y += 2) {
+        const uint8_t* row = edges.ptr<uint8_t>(y);
+        for (int x = tx * tile_; x < std::min(edges.cols, (tx + 1) * tile_); x += 2) ++histogram[row[x]];
+        samples += (std::min(edges.cols, (tx + 1) * tile_) - tx * tile_ + 1) / 2;
+      }
+      int median = 0;
+      for (int seen = 0; median < 255; ++median) {
+        seen += histogram[median];
+        if (2 * seen >= samples) break;
+      }
+      const double gray = std::min<double>(fixed, std::max<double>(o.min_value, o.noise_ratio * median));
+      tile_gray_[static_cast<size_t>(ty) * tile_cols_ + tx] = static_cast<uint8_t>(std::lround(gray));
+      used_gray_ = std::min(used_gray_, tile_gray_[static_cast<size_t>(ty) * tile_cols_ + tx]);
+    }
+  }
+}
+
+void EdgeObjectFinder::rowClasses(const uint8_t* edges, int width, int y, uint8_t sharp) {
+  const uint8_t* gray = &tile_gray_[static_cast<size_t>(y / tile_) * tile_cols_];
+  for (int tx = 0; tx * tile_ < width; ++tx) {
+    const int x0 = tx * tile_;
+    edgeClasses(edges + x0, std::min(tile_, width - x0), gray[tx], sharp, labels_.data() + x0);
+  }
+}
+
+void EdgeObjectFinder::encodeEdges(const cv::Mat& edges, uint8_t sharp, std::vector<Run>* runs) {
   labels_.resize(edges.cols);
   runs->clear();
   row_starts_.resize(static_cast<size_t>(edges.rows) + 1);
   for (int y = 0; y < edges.rows; ++y) {
     row_starts_[y] = static_cast<int32_t>(runs->size());
-    edgeClasses(edges.ptr<uint8_t>(y), edges.cols, gray, sharp, labels_.data());
+    rowClasses(edges.ptr<uint8_t>(y), edges.cols, y, sharp);
     appendRowRuns(labels_.data(), edges.cols, y, runs);
   }
   row_starts_[edges.rows] = static_cast<int32_t>(runs->size());
 }
 
 void EdgeObjectFinder::crestRuns(const cv::Mat& edges, uint8_t gray, uint8_t sharp) {
-  thinEdges(edges, gray, &thin_);
+  thinEdges(edges, gray, &thin_);  // the lowest tile threshold: each tile's own applies below
   crest_runs_.clear();
   for (int y = 0; y < edges.rows; ++y) {
     const size_t first = crest_runs_.size();
-    edgeClasses(thin_.ptr<uint8_t>(y), edges.cols, gray, sharp, labels_.data());
+    rowClasses(thin_.ptr<uint8_t>(y), edges.cols, y, sharp);
     appendRowRuns(labels_.data(), edges.cols, y, &crest_runs_);
     // Each crest run lies inside an edge run of its row: that run's region is its object.
     int32_t edge_run = row_starts_[y];

@@ -13,6 +13,7 @@ namespace {
 constexpr double kDegToRad = M_PI / 180.0;
 constexpr double kNearPlaneM = 0.02;
 constexpr int kSubPixelBits = 8;  // fillConvexPoly's fixed-point vertex precision
+constexpr int kTextureLattice = 256;  // the ground texture repeats every 256 blotches
 
 // Sutherland-Hodgman clip of a convex polygon to the half-space inside(p) >= 0, where
 // `inside` is affine in p.
@@ -55,7 +56,7 @@ double colourStep(const cv::Vec3b& a, const cv::Vec3b& b) {
 // a sample is visible when one side (2 px along the normal) shows `label` (or, for label < 0,
 // when the two sides are sky and ground) and the colour step across is large enough.
 void visibleStretches(const cv::Mat& clean, const cv::Mat& labels, double x1, double y1, double x2,
-                      double y2, int label, int box, std::vector<EdgeTruth>* out) {
+                      double y2, int label, int box, double min_contrast, std::vector<EdgeTruth>* out) {
   const double length = std::hypot(x2 - x1, y2 - y1);
   if (length < 1) return;
   const double ux = (x2 - x1) / length, uy = (y2 - y1) / length, nx = -uy, ny = ux;
@@ -81,7 +82,7 @@ void visibleStretches(const cv::Mat& clean, const cv::Mat& labels, double x1, do
                            : ((la == SceneSimulator::kSkyLabel && lb == SceneSimulator::kGroundLabel) ||
                               (lb == SceneSimulator::kSkyLabel && la == SceneSimulator::kGroundLabel));
       step = colourStep(clean.at<cv::Vec3b>(a), clean.at<cv::Vec3b>(b));
-      visible = visible && step >= SceneSimulator::kMinEdgeContrast;
+      visible = visible && step >= min_contrast;
     }
     if (visible) {
       if (start < 0) start = s;
@@ -122,6 +123,10 @@ std::string validateSceneConfig(const SceneConfig& c) {
     }
   }
   if (c.noise_sigma < 0) return "noise sigma must be >= 0";
+  if (!finite(c.ground_texture_contrast) || c.ground_texture_contrast < 0 || c.ground_texture_contrast > 1) {
+    return "ground_texture contrast must be in [0, 1]";
+  }
+  if (!finite(c.ground_texture_grain_m) || c.ground_texture_grain_m <= 0) return "ground_texture grain_m must be > 0";
   if (c.blur_sigma_px < 0 || c.blur_sigma_px > 20) return "blur_sigma_px must be in [0, 20]";
   if (c.boxes.size() > 255u - SceneSimulator::kFirstBoxLabel) return "too many boxes (at most 253)";
   for (const SceneBox& b : c.boxes) {
@@ -142,6 +147,10 @@ SceneSimulator::SceneSimulator(const SceneConfig& config) : config_(config) {
   if (!problem.empty()) throw std::invalid_argument(problem);
   camera_ = PinholeCamera::fromHorizontalFov(config_.width, config_.height,
                                              config_.hfov_deg * kDegToRad);
+  // The ground texture's lattice: one reproducible random value per blotch.
+  cv::RNG rng(config_.seed * 0x2545F4914F6CDD1Dull + 1);
+  texture_lattice_.resize(kTextureLattice * kTextureLattice);
+  for (float& value : texture_lattice_) value = rng.uniform(-1.0f, 1.0f);
 }
 
 CameraPose SceneSimulator::poseAt(double t) const {
@@ -257,9 +266,57 @@ void boxMaskTruth(const cv::Mat& labels, const std::vector<SceneBox>& boxes, siz
   truth->touches_other_box = cv::countNonZero(grown & other_box) > 0;
 }
 
+constexpr float kMaxFootprintOverGrain = 1e4f;  // beyond, the texture's contrast is below 1e-4 of its own
+
+// Smooth value noise in [-1, 1] at (x, y) (lattice units): the lattice's values interpolated
+// with smoothstep weights.
+inline float valueNoise(const float* lattice, float x, float y) {
+  const float fx = std::floor(x), fy = std::floor(y);
+  const int ix = static_cast<int>(fx) & (kTextureLattice - 1), iy = static_cast<int>(fy) & (kTextureLattice - 1);
+  const int jx = (ix + 1) & (kTextureLattice - 1), jy = (iy + 1) & (kTextureLattice - 1);
+  const float u = x - fx, v = y - fy, su = u * u * (3 - 2 * u), sv = v * v * (3 - 2 * v);
+  const float* r0 = lattice + iy * kTextureLattice;
+  const float* r1 = lattice + jy * kTextureLattice;
+  const float top = r0[ix] + su * (r0[jx] - r0[ix]), bottom = r1[ix] + su * (r1[jx] - r1[ix]);
+  return top + sv * (bottom - top);
+}
+
+// The ground's texture on the ground pixels of `frame` (labels still sky and ground only).
+void textureGround(const SceneConfig& config, const PinholeCamera& camera, const View& view, const float* lattice,
+                   SimFrame* frame) {
+  const Eigen::Matrix3d base_from_optical = view.optical_from_base.transpose();
+  const float inv_grain = static_cast<float>(1.0 / config.ground_texture_grain_m);
+  const float grain_fx = static_cast<float>(config.ground_texture_grain_m * camera.fx);
+  const float height = static_cast<float>(view.position.z()), px = static_cast<float>(view.position.x());
+  const float py = static_cast<float>(view.position.y()), contrast = static_cast<float>(config.ground_texture_contrast);
+  const Eigen::Vector3f step = (base_from_optical * Eigen::Vector3d(1.0 / camera.fx, 0, 0)).cast<float>();
+  for (int v = 0; v < frame->image.rows; ++v) {
+    const uint8_t* label = frame->labels.ptr<uint8_t>(v);
+    uint8_t* pixel = frame->image.ptr<uint8_t>(v);
+    // The ray through (u, v) in the base frame is linear in u.
+    const Eigen::Vector3f start = (base_from_optical * camera.ray(0, v)).cast<float>();
+    for (int u = 0; u < frame->image.cols; ++u) {
+      if (label[u] != SceneSimulator::kGroundLabel) continue;
+      const float dx = start.x() + u * step.x(), dy = start.y() + u * step.y(), dz = start.z() + u * step.z();
+      if (dz >= -1e-9f) continue;
+      const float t = -height / dz;
+      // A pixel's footprint on the ground (t |d|^2 / (fx |dz|)); blotches smaller average out.
+      const float footprint_over_grain = t * (dx * dx + dy * dy + dz * dz) / (grain_fx * -dz);
+      // Near the horizon the texture averages out entirely (and the ground point runs off to
+      // where the lattice coordinates would overflow an int).
+      if (!(footprint_over_grain < kMaxFootprintOverGrain)) continue;
+      const float x = (px + t * dx) * inv_grain, y = (py + t * dy) * inv_grain;
+      const float c = contrast * std::min(1.0f, 1.0f / footprint_over_grain);
+      const float n = 0.67f * valueNoise(lattice, x, y) + 0.33f * valueNoise(lattice, 0.25f * x, 0.25f * y);
+      const float gain = 1 + c * n;
+      for (int ch = 0; ch < 3; ++ch) pixel[3 * u + ch] = cv::saturate_cast<uint8_t>(pixel[3 * u + ch] * gain);
+    }
+  }
+}
+
 // Sky and ground, split exactly at the horizon: a pixel sees the sky when its ray points up.
 void paintSkyAndGround(const SceneConfig& config, const PinholeCamera& camera, const View& view, const Lighting& light,
-                       SimFrame* frame) {
+                       const std::vector<float>& texture_lattice, SimFrame* frame) {
   const int width = config.width, height = config.height;
   frame->image.create(height, width, CV_8UC3);
   frame->labels.create(height, width, CV_8UC1);
@@ -293,6 +350,7 @@ void paintSkyAndGround(const SceneConfig& config, const PinholeCamera& camera, c
       label_row.colRange(sky_begin, sky_end).setTo(SceneSimulator::kSkyLabel);
     }
   }
+  if (config.ground_texture_contrast > 0) textureGround(config, camera, view, texture_lattice.data(), frame);
 }
 
 // Boxes at `positions`, far to near (painter's algorithm; boxes standing apart on a plane sort
@@ -351,13 +409,18 @@ void edgeTruth(const std::vector<CandidateEdge>& candidate_edges, SimFrame* fram
     const double lo = std::max(std::min(ta, tb), std::min(tc, td)), hi = std::min(std::max(ta, tb), std::max(tc, td));
     if (hi <= lo) continue;
     const double ox = e.a.x() - ta * dx, oy = e.a.y() - ta * dy;  // line point at t = 0
-    visibleStretches(frame->image, frame->labels, ox + lo * dx, oy + lo * dy, ox + hi * dx, oy + hi * dy,
-                     SceneSimulator::kFirstBoxLabel + e.box, e.box, &frame->edges);
+    for (const auto& [min_contrast, out] : {std::make_pair(SceneSimulator::kMinEdgeContrast, &frame->edges),
+                                            std::make_pair(SceneSimulator::kMinFaintContrast, &frame->faint_edges)}) {
+      visibleStretches(frame->image, frame->labels, ox + lo * dx, oy + lo * dy, ox + hi * dx, oy + hi * dy,
+                       SceneSimulator::kFirstBoxLabel + e.box, e.box, min_contrast, out);
+    }
   }
   if (frame->horizon_visible) {
     double x1, y1, x2, y2;
     clipLineToImage(frame->horizon, width, height, &x1, &y1, &x2, &y2);
-    visibleStretches(frame->image, frame->labels, x1, y1, x2, y2, -1, -1, &frame->edges);
+    visibleStretches(frame->image, frame->labels, x1, y1, x2, y2, -1, -1, SceneSimulator::kMinEdgeContrast, &frame->edges);
+    visibleStretches(frame->image, frame->labels, x1, y1, x2, y2, -1, -1, SceneSimulator::kMinFaintContrast,
+                     &frame->faint_edges);
   }
 }
 
@@ -446,7 +509,7 @@ SimFrame SceneSimulator::render(uint64_t frame_index, double t) const {
                   Eigen::Vector3d(frame.pose.x_m, frame.pose.y_m, frame.pose.height_m)};
   std::vector<Eigen::Vector2d> positions;
   for (const SceneBox& box : config_.boxes) positions.push_back(boxPositionAt(box, t));
-  paintSkyAndGround(config_, camera_, view, light, &frame);
+  paintSkyAndGround(config_, camera_, view, light, texture_lattice_, &frame);
   std::vector<CandidateEdge> candidate_edges;
   paintBoxes(config_, camera_, view, light, positions, &frame, &candidate_edges);
   edgeTruth(candidate_edges, &frame);

@@ -24,9 +24,9 @@ Horizon horizonToMsg(const std_msgs::Header& header, const HorizonEstimate& h, d
   msg.header = header;
   msg.found = h.found;
   msg.roll = msg.pitch = std::numeric_limits<float>::quiet_NaN();
+  msg.confidence = static_cast<float>(h.confidence);  // also the best candidate's when not found: for tuning
   if (!h.found) return msg;
   msg.line = lineToMsg(h.line, h.x1, h.y1, h.x2, h.y2, h.votes, h.support);
-  msg.confidence = static_cast<float>(h.confidence);
   msg.roll = static_cast<float>(roll);
   msg.pitch = static_cast<float>(pitch);
   return msg;

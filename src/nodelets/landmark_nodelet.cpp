@@ -63,8 +63,9 @@ class LandmarkNodelet : public nodelet::Nodelet {
   bool viewEdges(const sensor_msgs::ImageConstPtr& msg, cv::Mat* edges);
   cv::Mat colourImage(const sensor_msgs::Image& edges_msg, const cv::Size& size);
   bool camera(const cv::Size& size, PinholeCamera* camera);
-  void learnColours(const std_msgs::Header& header, const cv::Mat& bgr, const cv::Size& size,
-                    const LandmarkResult& result, const Settings& settings);
+  void noteMissingColour(const std_msgs::Header& header, const cv::Size& size);
+  void learnColours(const std_msgs::Header& header, const cv::Mat& bgr, const LandmarkResult& result,
+                    const Settings& settings);
   void publishRanges(const std_msgs::Header& header, const std::vector<ColorClass>& classes);
   void publishDebug(const std_msgs::Header& header, const cv::Mat& bgr, const cv::Mat& edges,
                     const LandmarkResult& result, const Horizon& horizon, bool learning);
@@ -205,17 +206,15 @@ void LandmarkNodelet::connectCb() {
   const bool feeding = learning && pub_ranges_.getNumSubscribers() > 0;
   const bool wanted = feeding || pub_lines_.getNumSubscribers() > 0 || pub_horizon_.getNumSubscribers() > 0 ||
                       pub_markers_.getNumSubscribers() > 0 || pub_debug_.getNumSubscribers() > 0;
+  // The colour image of each edge image feeds the horizon's region evidence, learning and
+  // the overlay.
   if (!wanted) {
     sub_edges_.shutdown();
-  } else if (!sub_edges_) {
-    sub_edges_ = it_->subscribe("edges", 1, &LandmarkNodelet::edgesCb, this);
-  }
-  // The colour image feeds learning and the overlay.
-  if (!feeding && pub_debug_.getNumSubscribers() == 0) {
     sub_image_.shutdown();
-  } else if (!sub_image_) {
-    sub_image_ = it_->subscribe("image_raw", 2, &LandmarkNodelet::imageCb, this);
+    return;
   }
+  if (!sub_edges_) sub_edges_ = it_->subscribe("edges", 1, &LandmarkNodelet::edgesCb, this);
+  if (!sub_image_) sub_image_ = it_->subscribe("image_raw", 2, &LandmarkNodelet::imageCb, this);
 }
 
 void LandmarkNodelet::cameraInfoCb(const sensor_msgs::CameraInfoConstPtr& msg) {
@@ -238,8 +237,12 @@ void LandmarkNodelet::process(const sensor_msgs::ImageConstPtr& msg) {
   PinholeCamera camera_model;
   const bool have_camera = camera(edges.size(), &camera_model);
   const Settings s = settings();
+  // The colour image of this stamp (the horizon's region evidence); without it this frame has
+  // lines but no horizon.
+  const cv::Mat bgr = colourImage(*msg, edges.size());
+  if (bgr.empty()) noteMissingColour(msg->header, edges.size());
   LandmarkResult result;
-  detector_.detectInEdges(edges, s.landmark, &result);
+  detector_.detect(bgr, edges, s.landmark, &result);
   double roll = 0, pitch = 0;
   horizonAttitude(result.horizon.line, have_camera ? &camera_model : nullptr, &roll, &pitch);
   auto lines = boost::make_shared<LineArray>();
@@ -250,9 +253,7 @@ void LandmarkNodelet::process(const sensor_msgs::ImageConstPtr& msg) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   pub_lines_.publish(lines);
   pub_horizon_.publish(horizon);
-
-  const cv::Mat bgr = colourImage(*msg, edges.size());
-  learnColours(msg->header, bgr, edges.size(), result, s);
+  learnColours(msg->header, bgr, result, s);
   if (have_camera && pub_markers_.getNumSubscribers() > 0) {
     pub_markers_.publish(landmarkMarkers(msg->header, result, camera_model));
   }
@@ -310,29 +311,32 @@ bool LandmarkNodelet::camera(const cv::Size& size, PinholeCamera* camera) {
   return usable;
 }
 
-void LandmarkNodelet::learnColours(const std_msgs::Header& header, const cv::Mat& bgr, const cv::Size& size,
-                                   const LandmarkResult& result, const Settings& s) {
+void LandmarkNodelet::learnColours(const std_msgs::Header& header, const cv::Mat& bgr, const LandmarkResult& result,
+                                   const Settings& s) {
   ColorLearningLoop::Step step;
   if (!s.loop.enabled) {
     step = learning_loop_->stop(s.learning);
-  } else if (bgr.empty()) {
-    // The colour image of this stamp has not arrived (or was dropped): a skipped frame. Only
-    // images of another camera (another size or frame) are the user's to fix.
-    const sensor_msgs::ImageConstPtr newest = colours_.getElemBeforeTime(ros::TIME_MAX);
-    if (newest) ++frames_without_colour_;
-    if (newest && (newest->width != static_cast<uint32_t>(size.width) ||
-                   newest->height != static_cast<uint32_t>(size.height) || newest->header.frame_id != header.frame_id)) {
-      NODELET_WARN_THROTTLE(10.0, "learning is on but image_raw (%ux%u, frame '%s') and edges (%dx%d, frame '%s') "
-                            "come from different cameras: no colours are measured",
-                            newest->width, newest->height, newest->header.frame_id.c_str(), size.width, size.height,
-                            header.frame_id.c_str());
-    }
-  } else {
+  } else if (!bgr.empty()) {
     step = learning_loop_->learn(bgr, result, detector_.edgeObjects(), header.stamp.toSec(),
                                  ros::WallTime::now().toSec(), s.learning, s.loop.publish_period_s);
   }
   if (step.resumed > 0) NODELET_INFO("resuming from %d learned colour ranges the tracker uses", step.resumed);
   if (step.publish) publishRanges(header, step.classes);
+}
+
+void LandmarkNodelet::noteMissingColour(const std_msgs::Header& header, const cv::Size& size) {
+  // The colour image of this stamp has not arrived (or was dropped): counted. Only images of
+  // another camera (another size or frame) are the user's to fix.
+  const sensor_msgs::ImageConstPtr newest = colours_.getElemBeforeTime(ros::TIME_MAX);
+  if (!newest) return;
+  ++frames_without_colour_;
+  if (newest->width != static_cast<uint32_t>(size.width) || newest->height != static_cast<uint32_t>(size.height) ||
+      newest->header.frame_id != header.frame_id) {
+    NODELET_WARN_THROTTLE(10.0, "image_raw (%ux%u, frame '%s') and edges (%dx%d, frame '%s') come from different "
+                          "cameras: no region evidence for the horizon and no colours measured",
+                          newest->width, newest->height, newest->header.frame_id.c_str(), size.width, size.height,
+                          header.frame_id.c_str());
+  }
 }
 
 void LandmarkNodelet::publishRanges(const std_msgs::Header& header, const std::vector<ColorClass>& classes) {

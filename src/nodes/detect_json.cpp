@@ -34,13 +34,14 @@ void linesJson(std::ostringstream& json, const std::vector<DetectedLine>& lines)
 }
 
 void horizonJson(std::ostringstream& json, const HorizonEstimate& h) {
-  json << "{\"found\":" << (h.found ? "true" : "false");
+  // The confidence also when not found (the best candidate's), as on the horizon topic.
+  json << "{\"found\":" << (h.found ? "true" : "false") << ",\"confidence\":" << number(h.confidence);
   if (h.found) {
     double roll = 0, pitch = 0;
     horizonAttitude(h.line, nullptr, &roll, &pitch);
     json << ",\"theta\":" << number(h.line.theta) << ",\"intercept\":" << number(h.line.intercept) << ",\"x1\":" << number(h.x1)
          << ",\"y1\":" << number(h.y1) << ",\"x2\":" << number(h.x2) << ",\"y2\":" << number(h.y2)
-         << ",\"confidence\":" << number(h.confidence) << ",\"roll\":" << number(roll);
+         << ",\"roll\":" << number(roll);
   }
   json << "}";
 }

@@ -44,7 +44,7 @@ TEST(DetectCli, JsonPerImageAndErrorsForUnreadableFiles) {
   EXPECT_NE(first.find("\"file\":\"" + good + "\",\"width\":640,\"height\":480,\"blobs\":[{"), std::string::npos) << first;
   EXPECT_NE(first.find("\"color\":\"red\""), std::string::npos);
   EXPECT_NE(first.find("\"lines\":[{\"theta\":"), std::string::npos);
-  EXPECT_NE(first.find("\"horizon\":{\"found\":true,\"theta\":"), std::string::npos);
+  EXPECT_NE(first.find("\"horizon\":{\"found\":true,\"confidence\":0."), std::string::npos) << first;
   EXPECT_NE(second.find("\"error\":"), std::string::npos) << second;
   EXPECT_NE(third.find("\"file\":\"/nonexistent.png\",\"error\":"), std::string::npos) << third;
   EXPECT_FALSE(cv::imread(dir + "/rle_vision_frame.png").empty());  // the annotated overlay

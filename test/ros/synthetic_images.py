@@ -25,11 +25,31 @@ class BgrImage:
                     start = (y * self.width + x) * 3
                     self.data[start:start + 3] = bytes(bgr)
 
+    def add_ground_texture(self, angle_deg, y_at_centre, amplitude, seed=1):
+        """Grey grain of +-amplitude on every pixel below the line fill_below_line draws: real
+        ground is textured and the sky is smooth, which the horizon detector weighs."""
+        slope = math.tan(math.radians(angle_deg))
+        state = seed
+        for y in range(self.height):
+            for x in range(self.width):
+                state = (state * 1103515245 + 12345) % 2147483648  # a fixed LCG: the same grain every run
+                if y > y_at_centre + slope * (x - self.width / 2.0):
+                    delta = (state >> 16) % (2 * amplitude + 1) - amplitude
+                    start = (y * self.width + x) * 3
+                    for i in range(start, start + 3):
+                        self.data[i] = max(0, min(255, self.data[i] + delta))
+
     def add_pattern_noise(self, amplitude):
         """A fixed +-amplitude pattern (keeps colour statistics from being degenerate)."""
         for i in range(len(self.data)):
             delta = ((i * 7919) % 5 - 2) * amplitude // 2
             self.data[i] = max(0, min(255, self.data[i] + delta))
+
+    def ppm(self):
+        """Binary PPM bytes (RGB) of the image, for the command-line tools."""
+        rgb = bytearray(len(self.data))
+        rgb[0::3], rgb[1::3], rgb[2::3] = self.data[2::3], self.data[1::3], self.data[0::3]
+        return b'P6 %d %d 255\n' % (self.width, self.height) + bytes(rgb)
 
     def msg(self, stamp, frame_id='camera_optical_frame'):
         m = Image()

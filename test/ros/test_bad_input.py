@@ -31,6 +31,7 @@ SQUARE = (140, 150, 40, 30)           # x, y, w, h of the red box on the ground
 def good_frame():
     image = BgrImage(W, H, SKY)
     image.fill_rect(0, HORIZON_Y, W, H, GROUND)
+    image.add_ground_texture(0.0, HORIZON_Y - 1, 12)  # real ground is textured, the sky smooth
     x, y, w, h = SQUARE
     image.fill_rect(x, y, x + w, y + h, RED)
     return image

@@ -64,8 +64,11 @@ class LandmarkPipelineTest(unittest.TestCase):
             detections += len(lines.lines)
             correct += sum(any(near_segment(l, e, 2.0, 2.0) for e in truth.edges) for l in lines.lines)
             for l in lines.lines:
-                self.assertGreaterEqual(l.votes, 5)
                 self.assertGreater(l.support, 0)
+                if l.votes == 0:  # the horizon's own segment, added where no Hough line covers it
+                    self.assertEqual((l.theta, l.x1, l.y1), (horizon.line.theta, horizon.line.x1, horizon.line.y1))
+                else:
+                    self.assertGreaterEqual(l.votes, 5)
         median = lambda v: sorted(v)[len(v) // 2]  # noqa: E731
         recall, precision = found / float(truths), correct / float(detections)
         rospy.loginfo('%d frames: horizon angle error median %.3f deg, roll %.3f deg, pitch %.3f deg; '

@@ -3,6 +3,7 @@
 (opencv_apps once shipped parameters that never arrived). Each test sets a parameter with
 dynamic_reconfigure, feeds a synthetic image whose right answer differs between the two
 values, and checks the output."""
+import math
 import sys
 import threading
 import time
@@ -178,30 +179,42 @@ class LiveTuningTest(unittest.TestCase):
 
     # --- Landmark --------------------------------------------------------------------------
     def horizon_scene(self, angle_deg=0.0, step=None):
+        """Smooth sky above textured ground (the horizon detector weighs both), the boundary
+        through (W / 2, 0.4 H)."""
         image = BgrImage(W, H, SKY)
         image.fill_below_line(angle_deg, H * 0.4, step or GROUND)
+        image.add_ground_texture(angle_deg, H * 0.4, 12)
         return image
+
+    @staticmethod
+    def hough_lines(lines):
+        """The lines the Hough found (the horizon's own segment is added with no votes)."""
+        return [l for l in lines.lines if l.votes > 0]
 
     def test_landmark_gray_threshold(self):
         faint = self.horizon_scene(step=(SKY[0], SKY[1], SKY[2] - 40))  # edge value 80 at gain 2
         self.landmark.update_configuration({'gray_threshold': 60})
-        self.assertTrue(self.landmarks(faint)[1].found)
+        hough = self.hough_lines(self.landmarks(faint)[0])
+        self.assertEqual(len(hough), 1)
+        self.assertAlmostEqual(hough[0].intercept, 96.5, delta=1.0)  # the step between rows 96 and 97
         self.landmark.update_configuration({'gray_threshold': 100})
         lines, horizon, _ = self.landmarks(faint)
-        self.assertFalse(horizon.found)
-        self.assertEqual(len(lines.lines), 0)
+        self.assertEqual(self.hough_lines(lines), [])
+        # The horizon is weighed on the colours and the frame's own edge statistics, not on the
+        # edge classes: it is still there.
+        self.assertTrue(horizon.found)
         self.landmark.update_configuration({'gray_threshold': 60})
 
     def test_landmark_sharp_threshold_and_min_object_px(self):
         scene = self.horizon_scene()
         self.landmark.update_configuration({'min_object_px': 20})
-        self.assertTrue(self.landmarks(scene)[1].found)
+        self.assertEqual(len(self.hough_lines(self.landmarks(scene)[0])), 1)
         self.landmark.update_configuration({'min_object_px': 100000})  # every edge object is noise now
-        self.assertFalse(self.landmarks(scene)[1].found)
+        self.assertEqual(self.hough_lines(self.landmarks(scene)[0]), [])
         self.landmark.update_configuration({'min_object_px': 20})
         # sharp_threshold below gray_threshold is refused: the node keeps working as before.
         self.landmark.update_configuration({'sharp_threshold': 10})
-        self.assertTrue(self.landmarks(scene)[1].found)
+        self.assertEqual(len(self.hough_lines(self.landmarks(scene)[0])), 1)
         self.landmark.update_configuration({'sharp_threshold': 200})
 
     def test_landmark_min_votes(self):
@@ -209,21 +222,21 @@ class LiveTuningTest(unittest.TestCase):
         # four edges share those pairs and none reaches 1000 votes; the lone horizon does.
         scene = self.box_scene()
         self.landmark.update_configuration({'min_votes': 5})
-        many = len(self.landmarks(scene)[0].lines)
+        many = len(self.hough_lines(self.landmarks(scene)[0]))
         self.assertGreaterEqual(many, 5)
         self.landmark.update_configuration({'min_votes': 1000})
-        self.assertLess(len(self.landmarks(scene)[0].lines), many - 2)
+        self.assertEqual(len(self.hough_lines(self.landmarks(scene)[0])), 1)
         self.landmark.update_configuration({'min_votes': 5})
 
     def test_landmark_max_samples_per_object(self):
         scene = self.box_scene()  # the box's four edges are one edge object
         self.landmark.update_configuration({'max_samples_per_object': 2000})
-        many = len(self.landmarks(scene)[0].lines)
+        many = len(self.hough_lines(self.landmarks(scene)[0]))
         self.assertGreaterEqual(many, 5)
         # 10 pairs shared by four edges cannot give each edge 5 votes; the horizon (alone in
         # its object) still gets them.
         self.landmark.update_configuration({'max_samples_per_object': 10, 'max_rounds': 1})
-        self.assertLess(len(self.landmarks(scene)[0].lines), many - 2)
+        self.assertEqual(len(self.hough_lines(self.landmarks(scene)[0])), 1)
         self.landmark.update_configuration({'max_samples_per_object': 2000, 'max_rounds': 4})
 
     def test_landmark_horizon_max_angle_deg(self):
@@ -233,16 +246,26 @@ class LiveTuningTest(unittest.TestCase):
         self.assertTrue(horizon.found)
         self.assertAlmostEqual(horizon.line.theta, 0.349, delta=0.01)
         self.landmark.update_configuration({'horizon_max_angle_deg': 10.0})
-        self.assertFalse(self.landmarks(tilted)[1].found)
-        self.landmark.update_configuration({'horizon_max_angle_deg': 40.0})
+        horizon = self.landmarks(tilted)[1]
+        # Not the 20-degree boundary: at most the best split the limit allows.
+        self.assertFalse(horizon.found and abs(horizon.line.theta - 0.349) < 0.05)
+        if horizon.found:
+            self.assertLessEqual(abs(horizon.line.theta), math.radians(10.0) + 1e-6)
+        self.landmark.update_configuration({'horizon_max_angle_deg': 60.0})
 
-    def test_landmark_horizon_min_piece_px(self):
+    def test_landmark_horizon_min_confidence(self):
         scene = self.horizon_scene()
-        self.landmark.update_configuration({'horizon_min_piece_px': 40.0})
-        self.assertTrue(self.landmarks(scene)[1].found)
-        self.landmark.update_configuration({'horizon_min_piece_px': 1000.0})  # longer than the image is wide
-        self.assertFalse(self.landmarks(scene)[1].found)
-        self.landmark.update_configuration({'horizon_min_piece_px': 40.0})
+        self.landmark.update_configuration({'horizon_min_confidence': 0.5})
+        horizon = self.landmarks(scene)[1]
+        self.assertTrue(horizon.found)
+        self.assertGreater(horizon.confidence, 0.7)
+        self.assertLess(horizon.confidence, 0.99)  # the grain leaves some ground pixels smooth
+        self.assertAlmostEqual(horizon.line.intercept, 96.5, delta=1.0)
+        self.landmark.update_configuration({'horizon_min_confidence': 0.99})
+        gated = self.landmarks(scene)[1]
+        self.assertFalse(gated.found)
+        self.assertAlmostEqual(gated.confidence, horizon.confidence, delta=1e-6)  # reported, only not enough
+        self.landmark.update_configuration({'horizon_min_confidence': 0.5})
 
     def box_scene(self):
         image = self.horizon_scene()
