@@ -55,13 +55,14 @@ class LandmarkNodelet : public nodelet::Nodelet {
   void advertiseAndSubscribe(ros::NodeHandle& nh, ros::NodeHandle& pnh);
   void connectCb();
   void edgesCb(const sensor_msgs::ImageConstPtr& msg);
-  void imageCb(const sensor_msgs::ImageConstPtr& msg) { colours_.add(msg); }
+  void imageCb(const sensor_msgs::ImageConstPtr& msg);
   void cameraInfoCb(const sensor_msgs::CameraInfoConstPtr& msg);
   void reconfigureCb(LandmarkConfig& config, uint32_t level);
   Settings settings();
   void process(const sensor_msgs::ImageConstPtr& edges_msg);
   bool viewEdges(const sensor_msgs::ImageConstPtr& msg, cv::Mat* edges);
   cv::Mat colourImage(const sensor_msgs::Image& edges_msg, const cv::Size& size);
+  sensor_msgs::ImageConstPtr waitForColour(const ros::Time& stamp);
   bool camera(const cv::Size& size, PinholeCamera* camera);
   void noteMissingColour(const std_msgs::Header& header, const cv::Size& size);
   void learnColours(const std_msgs::Header& header, const cv::Mat& bgr, const LandmarkResult& result,
@@ -83,8 +84,14 @@ class LandmarkNodelet : public nodelet::Nodelet {
   std::shared_ptr<dynamic_reconfigure::Server<LandmarkConfig>> reconfigure_server_;
   std::unique_ptr<LandmarkConfig> accepted_config_;  // shown again when a new one is refused
 
-  // Recent colour images, for the edge image of the same stamp (learning and the overlay).
+  // Recent colour images, for the edge image of the same stamp (the horizon, learning and the
+  // overlay). The edge image is made from its colour image, which therefore normally arrives
+  // first; when it has not yet (the subscriptions just connected, a busy manager), the worker
+  // waits for it: a bounded while (at start-up, or when an older colour image is the newest).
   message_filters::Cache<sensor_msgs::Image> colours_{8};
+  std::mutex colour_mutex_;
+  std::condition_variable colour_arrived_;
+  StartupWait colour_wait_{1.0};  // the first frames wait this long (s) for any colour image
   std::mutex info_mutex_;
   std::condition_variable info_arrived_;
   sensor_msgs::CameraInfoConstPtr camera_info_;
@@ -275,15 +282,43 @@ bool LandmarkNodelet::viewEdges(const sensor_msgs::ImageConstPtr& msg, cv::Mat* 
   return false;
 }
 
+void LandmarkNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
+  {
+    std::lock_guard<std::mutex> lock(colour_mutex_);
+    colours_.add(msg);
+  }
+  colour_arrived_.notify_all();
+}
+
+sensor_msgs::ImageConstPtr LandmarkNodelet::waitForColour(const ros::Time& stamp) {
+  constexpr double kLateColourS = 0.1;  // how long a colour image may lag its own edge image
+  auto same_stamp = [this, &stamp] {
+    const std::vector<sensor_msgs::ImageConstPtr> found = colours_.getInterval(stamp, stamp);
+    return found.empty() ? sensor_msgs::ImageConstPtr() : found.back();
+  };
+  std::unique_lock<std::mutex> lock(colour_mutex_);
+  sensor_msgs::ImageConstPtr colour = same_stamp();
+  if (colour) return colour;
+  const sensor_msgs::ImageConstPtr newest = colours_.getElemBeforeTime(ros::TIME_MAX);
+  const double now_s = ros::WallTime::now().toSec();
+  double wait_s = 0;
+  if (!newest && colour_wait_.waiting(now_s)) {
+    wait_s = colour_wait_.remaining(now_s);  // none yet: the subscription may still be connecting
+  } else if (newest && newest->header.stamp < stamp) {
+    wait_s = kLateColourS;  // this stamp's may still come
+  }
+  if (wait_s > 0) colour_arrived_.wait_for(lock, std::chrono::duration<double>(wait_s), [&] { return same_stamp() != nullptr; });
+  return same_stamp();
+}
+
 cv::Mat LandmarkNodelet::colourImage(const sensor_msgs::Image& edges_msg, const cv::Size& size) {
   // The colour image of the edge image's stamp, as BGR (a view when it already is).
-  const std::vector<sensor_msgs::ImageConstPtr> same_stamp =
-      colours_.getInterval(edges_msg.header.stamp, edges_msg.header.stamp);
-  if (same_stamp.empty()) return cv::Mat();
+  const sensor_msgs::ImageConstPtr colour = waitForColour(edges_msg.header.stamp);
+  if (!colour) return cv::Mat();
   PixelFormat format;
   cv::Mat view;
   std::string error;
-  if (!viewImage(*same_stamp.back(), &format, &view, &error) || view.size() != size) return cv::Mat();
+  if (!viewImage(*colour, &format, &view, &error) || view.size() != size) return cv::Mat();
   if (format == PixelFormat::BGR8) return view;
   bgr_ = toDisplayBgr(view, format);
   return bgr_;
