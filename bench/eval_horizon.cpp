@@ -142,24 +142,14 @@ void score(MethodScore* m, const HorizonLabel& label, const Detection& d, int wi
   m->confident_passed += confident && pass;
 }
 
-std::string machine() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  for (std::string line; std::getline(cpuinfo, line);) {
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  }
-  return "unknown";
-}
-
 void report(const std::vector<MethodScore>& methods, const std::string& dir, const std::string& json_path) {
   std::printf("%-34s %6s %6s %8s %8s %9s %9s %10s %8s\n", "method", "pass", "found", "angle", "angle", "distance",
               "on hor.", "conf>=0.5", "ms/frame");
   std::printf("%-34s %6s %6s %8s %8s %9s %9s %10s %8s\n", "", "%", "%", "mean deg", "med deg", "mean px", "%",
               "pass %", "mean");
   std::ostringstream json;
-  std::time_t now = std::time(nullptr);
-  char date[32];
-  std::strftime(date, sizeof(date), "%Y-%m-%d", std::gmtime(&now));
-  json << "{\n  \"data\": \"" << dir << "\",\n  \"machine\": \"" << machine() << "\",\n  \"date\": \"" << date
+  json << "{\n  \"data\": \"" << dir << "\",\n  \"machine\": \"" << bench::machineName() << "\",\n  \"date\": \""
+       << bench::todayUtc()
        << "\",\n  \"frames\": " << (methods.empty() ? 0 : methods[0].frames) << ",\n  \"methods\": {";
   for (size_t i = 0; i < methods.size(); ++i) {
     const MethodScore& m = methods[i];

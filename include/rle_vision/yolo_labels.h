@@ -1,0 +1,23 @@
+// YOLO label files (one per image, beside it: IMAGE.txt with lines 'class cx cy w h', all
+// normalised to the image size), as used by the calibration CLI and the ball evaluation.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace rle_vision {
+
+// The label file of an image: the same path with .txt for its extension.
+std::string yoloLabelPath(const std::string& image_path);
+
+// The boxes of `label_class` in `label_path`, in pixels of an image of `size`, clamped to it
+// (normalised boxes round to a pixel past the border). Throws ConfigError with the file and
+// line for a missing file, a malformed line or a box wholly outside the image.
+std::vector<cv::Rect> readYoloBoxes(const std::string& label_path, int label_class, const cv::Size& size);
+
+// The .jpg, .jpeg and .png files of a folder, sorted by name (empty when it cannot be read).
+std::vector<std::string> imagesInFolder(const std::string& folder);
+
+}  // namespace rle_vision
