@@ -187,29 +187,27 @@ void report(const std::string& calibrate_dir, const CalibrationResult& calibrati
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string calibrate_dir, json_path;
-  int label_class = 0;
+  std::string calibrate_dir, json_path, label_class = "0";
   std::vector<std::string> folders;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if ((arg == "--calibrate" || arg == "--json" || arg == "--label-class") && i + 1 < argc) {
-      const std::string value = argv[++i];
-      if (arg == "--label-class") label_class = std::stoi(value);
-      else (arg == "--calibrate" ? calibrate_dir : json_path) = value;
+      (arg == "--label-class" ? label_class : arg == "--calibrate" ? calibrate_dir : json_path) = argv[++i];
     } else {
       folders.push_back(arg);
     }
   }
-  if (calibrate_dir.empty() || folders.empty()) {
+  if (calibrate_dir.empty() || folders.empty() || label_class.find_first_not_of("0123456789") != std::string::npos ||
+      label_class.empty() || label_class.size() > 6) {
     std::cerr << "usage: rle_vision_eval_balls --calibrate DIR [--label-class N] [--json OUT] DIR...\n";
     return 2;
   }
   bench::pinToOneCpu();
   try {
-    const CalibrationResult calibration = calibrate(calibrate_dir, label_class);
+    const CalibrationResult calibration = calibrate(calibrate_dir, std::stoi(label_class));
     BallMethods methods(calibration.color_class);
     std::vector<FolderScores> scores;
-    for (const std::string& folder : folders) scores.push_back(evaluateFolder(folder, label_class, &methods));
+    for (const std::string& folder : folders) scores.push_back(evaluateFolder(folder, std::stoi(label_class), &methods));
     report(calibrate_dir, calibration, scores, json_path);
   } catch (const std::exception& e) {
     std::cerr << "rle_vision_eval_balls: " << e.what() << "\n";

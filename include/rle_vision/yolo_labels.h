@@ -13,8 +13,9 @@ namespace rle_vision {
 std::string yoloLabelPath(const std::string& image_path);
 
 // The boxes of `label_class` in `label_path`, in pixels of an image of `size`, clamped to it
-// (normalised boxes round to a pixel past the border). Throws ConfigError with the file and
-// line for a missing file, a malformed line or a box wholly outside the image.
+// (normalised boxes round to a pixel past the border; a box is at least 1 px). No file means
+// no boxes (YOLO's convention for an image without objects). Throws ConfigError with the file
+// and line for a malformed line, an empty box or a box wholly outside the image.
 std::vector<cv::Rect> readYoloBoxes(const std::string& label_path, int label_class, const cv::Size& size);
 
 // The .jpg, .jpeg and .png files of a folder, sorted by name (empty when it cannot be read).

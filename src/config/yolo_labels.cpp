@@ -18,9 +18,9 @@ std::string yoloLabelPath(const std::string& image_path) {
 }
 
 std::vector<cv::Rect> readYoloBoxes(const std::string& label_path, int label_class, const cv::Size& size) {
-  std::ifstream in(label_path);
-  if (!in) throw ConfigError(label_path + ": cannot open the YOLO label file");
   std::vector<cv::Rect> boxes;
+  std::ifstream in(label_path);
+  if (!in) return boxes;  // YOLO's convention: an image without objects has no label file
   std::string line;
   for (int line_number = 1; std::getline(in, line); ++line_number) {
     const std::string where = label_path + ":" + std::to_string(line_number) + ": ";
@@ -28,12 +28,17 @@ std::vector<cv::Rect> readYoloBoxes(const std::string& label_path, int label_cla
     std::istringstream fields(line);
     int cls;
     double cx, cy, w, h;
-    if (!(fields >> cls >> cx >> cy >> w >> h)) throw ConfigError(where + "expected 'class cx cy w h'");
+    std::string rest;
+    if (!(fields >> cls >> cx >> cy >> w >> h) || (fields >> rest)) {
+      throw ConfigError(where + "expected 'class cx cy w h' (a box label, not a polygon)");
+    }
     if (cls != label_class) continue;
+    if (!(w > 0 && h > 0)) throw ConfigError(where + "the box is empty (w and h must be > 0)");
     const cv::Point p0(static_cast<int>(std::lround((cx - w / 2) * size.width)),
                        static_cast<int>(std::lround((cy - h / 2) * size.height)));
-    const cv::Point p1(static_cast<int>(std::lround((cx + w / 2) * size.width)),
-                       static_cast<int>(std::lround((cy + h / 2) * size.height)));
+    // At least one pixel, however small the normalised box.
+    const cv::Point p1(std::max(p0.x + 1, static_cast<int>(std::lround((cx + w / 2) * size.width))),
+                       std::max(p0.y + 1, static_cast<int>(std::lround((cy + h / 2) * size.height))));
     const cv::Rect box = cv::Rect(p0, p1) & cv::Rect(0, 0, size.width, size.height);
     if (box.empty()) throw ConfigError(where + "the box lies outside the image");
     boxes.push_back(box);

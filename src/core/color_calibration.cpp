@@ -88,9 +88,10 @@ struct WeightedPixels {
   std::vector<double> weights;
 };
 
-// The examples whose mean colour lies within outlier_distance of the median of all
-// examples' means (the paper's outlier rule, one level up: a box around the wrong thing or an
-// object hidden behind another is dropped as a whole).
+// The examples whose mean colour lies within outlier_distance (on every channel) of the medoid
+// box's: the box whose colour is nearest all the others' (the paper's outlier rule, one level
+// up: a box around the wrong thing or an object hidden behind another is dropped as a whole).
+// The medoid itself always stays, so at least one example is used.
 WeightedPixels agreeingExamples(const std::vector<std::vector<Channels>>& objects, double outlier_distance,
                                 int* used) {
   std::vector<std::array<double, 3>> means;
@@ -102,19 +103,22 @@ WeightedPixels agreeingExamples(const std::vector<std::vector<Channels>>& object
     for (double& v : m) v /= static_cast<double>(pixels.size());
     means.push_back(m);
   }
-  double median[3];
-  for (int ch = 0; ch < 3; ++ch) {
-    std::vector<double> values;
-    for (const auto& m : means) values.push_back(m[ch]);
-    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-    median[ch] = values[values.size() / 2];
+  auto distance = [&](size_t a, size_t b) {
+    double d = 0;
+    for (int ch = 0; ch < 3; ++ch) d = std::max(d, std::fabs(means[a][ch] - means[b][ch]));
+    return d;
+  };
+  size_t medoid = 0;
+  double best = -1;
+  for (size_t i = 0; i < means.size(); ++i) {
+    double total = 0;
+    for (size_t j = 0; j < means.size(); ++j) total += std::min(distance(i, j), 2 * outlier_distance);
+    if (best < 0 || total < best) best = total, medoid = i;
   }
   WeightedPixels out;
   *used = 0;
   for (size_t i = 0; i < objects.size(); ++i) {
-    bool agrees = true;
-    for (int ch = 0; ch < 3; ++ch) agrees = agrees && std::fabs(means[i][ch] - median[ch]) <= outlier_distance;
-    if (!agrees) continue;
+    if (distance(i, medoid) > outlier_distance) continue;
     ++*used;
     out.pixels.insert(out.pixels.end(), objects[i].begin(), objects[i].end());
     out.weights.insert(out.weights.end(), objects[i].size(), 1.0 / static_cast<double>(objects[i].size()));
@@ -143,6 +147,10 @@ ColorStats weightedStats(const WeightedPixels& w, const CalibrationOptions& o) {
       sum[ch] += w.weights[i] * p[ch];
       sum2[ch] += w.weights[i] * p[ch] * p[ch];
     }
+  }
+  if (kept_weight <= 0) {
+    throw std::invalid_argument("the objects' pixels spread more than the outlier distance around their mean: "
+                                "give boxes of one colour");
   }
   for (int ch = 0; ch < 3; ++ch) {
     s.mean[ch] = sum[ch] / kept_weight;
@@ -217,35 +225,38 @@ struct Tightening {
 };
 
 // Coordinate ascent from the statistics' range: the one-level move of one bound that raises
-// the score most, until none does.
+// the score most, until none does. Bounds never moved keep their exact value.
 void tighten(const Tightening& t, Channels* lo, Channels* hi, double* recall, double* others_per_image) {
-  int l[3], h[3];
+  int bounds[6];
   for (int ch = 0; ch < 3; ++ch) {
-    l[ch] = (*lo)[ch] >> BoxCounter::kShift;
-    h[ch] = (*hi)[ch] >> BoxCounter::kShift;
+    bounds[ch] = (*lo)[ch] >> BoxCounter::kShift;
+    bounds[3 + ch] = (*hi)[ch] >> BoxCounter::kShift;
   }
+  const int* l = bounds;
+  const int* h = bounds + 3;
+  bool moved[6] = {false, false, false, false, false, false};
   double best = t.score(l, h, recall, others_per_image);
   for (int step = 0; step < 4 * BoxCounter::kLevels; ++step) {
     int best_bound = -1, best_move = 0;
     for (int bound = 0; bound < 6; ++bound) {
       for (int move : {-1, 1}) {
-        int* value = bound < 3 ? &l[bound] : &h[bound - 3];
         const int ch = bound % 3;
-        *value += move;
+        bounds[bound] += move;
         double r, o;
         const bool valid = l[ch] >= 0 && h[ch] < BoxCounter::kLevels && l[ch] <= h[ch];
         const double s = valid ? t.score(l, h, &r, &o) : -1;
-        *value -= move;
+        bounds[bound] -= move;
         if (s > best + 1e-9) best = s, best_bound = bound, best_move = move;
       }
     }
     if (best_bound < 0) break;
-    (best_bound < 3 ? l[best_bound] : h[best_bound - 3]) += best_move;
+    bounds[best_bound] += best_move;
+    moved[best_bound] = true;
   }
   t.score(l, h, recall, others_per_image);
   for (int ch = 0; ch < 3; ++ch) {
-    (*lo)[ch] = static_cast<uint8_t>(l[ch] << BoxCounter::kShift);
-    (*hi)[ch] = static_cast<uint8_t>((h[ch] << BoxCounter::kShift) + (1 << BoxCounter::kShift) - 1);
+    if (moved[ch]) (*lo)[ch] = static_cast<uint8_t>(l[ch] << BoxCounter::kShift);
+    if (moved[3 + ch]) (*hi)[ch] = static_cast<uint8_t>((h[ch] << BoxCounter::kShift) + (1 << BoxCounter::kShift) - 1);
   }
 }
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -29,15 +30,16 @@ const char* kUsage =
     "  --box x0,y0,x1,y1  a box around the object in the image named before it (pixels; x1,y1 one past\n"
     "                     the last column and row); an image without boxes shows colours the class must avoid\n"
     "  --label-class N    boxes of class N from the YOLO label file beside each image (IMAGE.txt:\n"
-    "                     'class cx cy w h', normalised); a FOLDER means its .jpg/.png images, sorted\n"
+    "                     'class cx cy w h', normalised; none: no boxes); a FOLDER means its .jpg/.png images\n"
     "  --space S          YUV (default), RGB or HSV\n"
     "  --min-area PX      the class's min_area_px (default 20)\n"
     "  --no-background-gate  keep the statistics' range (mean +- 3 sigma) instead of tightening it\n"
     "                     against the labelled images' other pixels\n"
     "  --output FILE      also write the class into FILE (colors.yaml; a class of the same name is\n"
-    "                     replaced, others kept)\n"
-    "  --cmvision FILE    also write the same classes as a CMVision colors.txt (YUV only)\n"
-    "Prints the class as colors.yaml text, then as colors.txt; a summary goes to stderr.\n"
+    "                     replaced, the others kept; comments are not kept)\n"
+    "  --cmvision FILE    the same for a CMVision colors.txt (YUV classes only)\n"
+    "Prints the class as colors.yaml text, then (YUV) as colors.txt; a summary goes to stderr.\n"
+    "HSV: hue ranges that wrap around 0 (red) are not produced; calibrate red in YUV.\n"
     "Exit status: 0 done, 2 bad input (unreadable image, box outside its image, empty box, no object).\n";
 
 struct Arguments {
@@ -47,6 +49,8 @@ struct Arguments {
   std::vector<std::string> images;
   std::vector<std::vector<cv::Rect>> boxes;  // per image, from --box
 };
+
+const char* kNameCharacters = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-";
 
 struct UsageError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
@@ -59,10 +63,14 @@ cv::Rect parseBox(const std::string& text) {
   if (!(in >> x0 >> c1 >> y0 >> c2 >> x1 >> c3 >> y1) || c1 != ',' || c2 != ',' || c3 != ',' || (in >> rest)) {
     throw UsageError("--box needs x0,y0,x1,y1 (four integers), got '" + text + "'");
   }
+  const int kLimit = 1 << 20;  // far beyond any image; keeps x1 - x0 from overflowing
+  if (std::abs(x0) > kLimit || std::abs(y0) > kLimit || std::abs(x1) > kLimit || std::abs(y1) > kLimit) {
+    throw UsageError("--box " + text + ": coordinates out of range");
+  }
   return cv::Rect(x0, y0, x1 - x0, y1 - y0);  // x1 <= x0 gives an empty box, refused with its example
 }
 
-int parseInt(const std::string& option, const std::string& text) {
+int parseInt(const std::string& option, const std::string& text, int minimum) {
   size_t used = 0;
   int value = -1;
   try {
@@ -70,7 +78,9 @@ int parseInt(const std::string& option, const std::string& text) {
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used != text.size() || value < 0) throw UsageError(option + " needs a whole number >= 0, got '" + text + "'");
+  if (used != text.size() || value < minimum) {
+    throw UsageError(option + " needs a whole number >= " + std::to_string(minimum) + ", got '" + text + "'");
+  }
   return value;
 }
 
@@ -78,8 +88,8 @@ void parseOption(const std::string& arg, const std::string& value, Arguments* ar
   if (arg == "--name") args->name = value;
   else if (arg == "--output") args->output = value;
   else if (arg == "--cmvision") args->cmvision = value;
-  else if (arg == "--label-class") args->label_class = parseInt(arg, value);
-  else if (arg == "--min-area") args->options.min_area_px = static_cast<uint32_t>(parseInt(arg, value));
+  else if (arg == "--label-class") args->label_class = parseInt(arg, value, 0);
+  else if (arg == "--min-area") args->options.min_area_px = static_cast<uint32_t>(parseInt(arg, value, 1));
   else if (arg == "--space" && !parseColorSpace(value, &args->options.space)) throw UsageError("unknown --space " + value);
   else if (arg == "--box") {
     if (args->images.empty()) throw UsageError("--box " + value + " comes before any image: name the image first");
@@ -104,8 +114,15 @@ Arguments parseArguments(int argc, char** argv) {
       args.boxes.emplace_back();
     }
   }
-  if (args.name.empty()) throw UsageError("--name NAME is required (the class's name)");
+  if (args.name.empty() || args.name.find_first_not_of(kNameCharacters) != std::string::npos) {
+    throw UsageError("--name NAME is required: letters, digits, '_' and '-' (it goes into colors.yaml and colors.txt)");
+  }
   if (args.images.empty()) throw UsageError("no images given");
+  const bool has_boxes = std::any_of(args.boxes.begin(), args.boxes.end(), [](const auto& b) { return !b.empty(); });
+  if (has_boxes && args.label_class >= 0) throw UsageError("give --box or --label-class, not both");
+  if (!args.cmvision.empty() && args.options.space != ColorSpace::YUV) {
+    throw UsageError("--cmvision needs --space YUV: CMVision's colors.txt holds YUV ranges only");
+  }
   return args;
 }
 
@@ -181,11 +198,15 @@ int main(int argc, char** argv) {
     const Arguments args = parseArguments(argc, argv);
     const CalibrationResult result = calibrateColorClass(readExamples(args), args.name, args.options);
     report(result);
-    const std::vector<ColorClass> classes = mergedClasses(args.output, result.color_class);
     std::cout << colorClassesToYaml({result.color_class});
     if (args.options.space == ColorSpace::YUV) std::cout << "\n" << cmvisionColorsText({result.color_class});
-    if (!args.output.empty()) writeFile(args.output, colorClassesToYaml(classes));
-    if (!args.cmvision.empty()) writeFile(args.cmvision, cmvisionColorsText(classes));
+    // Both texts first, so that a file that cannot take the class (an HSV class in a
+    // colors.txt) leaves both files as they were.
+    const std::string yaml = args.output.empty() ? "" : colorClassesToYaml(mergedClasses(args.output, result.color_class));
+    const std::string cmvision =
+        args.cmvision.empty() ? "" : cmvisionColorsText(mergedClasses(args.cmvision, result.color_class));
+    if (!args.output.empty()) writeFile(args.output, yaml);
+    if (!args.cmvision.empty()) writeFile(args.cmvision, cmvision);
   } catch (const UsageError& e) {
     std::cerr << "rle_vision_calibrate: " << e.what() << "\n" << kUsage;
     return 2;

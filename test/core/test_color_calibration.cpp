@@ -2,6 +2,7 @@
 // range kept off the image's other colours, and the rle_vision_calibrate CLI.
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <random>
@@ -15,6 +16,8 @@
 #include "rle_vision/color_calibration.h"
 #include "rle_vision/color_config.h"
 #include "rle_vision/color_convert.h"
+#include "rle_vision/config_error.h"
+#include "rle_vision/yolo_labels.h"
 
 namespace rle_vision {
 namespace {
@@ -122,6 +125,38 @@ TEST(ColorCalibration, TheBackgroundGateKeepsNearbyColoursOut) {
   EXPECT_FALSE(gated.color_class.contains(yuvOf(kCarpet)));
 }
 
+TEST(ColorCalibration, TwoBoxesThatDisagreeKeepOneNotNone) {
+  cv::Mat a = carpet(), b = carpet();
+  const cv::Rect box_a = drawBall(&a, cv::Point(60, 90), 10);
+  cv::rectangle(b, box_a, cv::Scalar(200, 60, 30), cv::FILLED);
+  CalibrationOptions options;
+  options.exclude_background = false;
+  const CalibrationResult r = calibrateColorClass({{"a", a, {box_a}}, {"b", b, {box_a}}}, "ball", options);
+  EXPECT_EQ(r.boxes_used, 1);
+  EXPECT_EQ(r.boxes_dropped, 1);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_FALSE(std::isnan(r.stats.mean[ch]));
+}
+
+TEST(YoloLabels, ClassFilterClampingAndErrors) {
+  const std::string dir = testing::TempDir();
+  const std::string path = dir + "/rle_vision_labels.txt";
+  std::ofstream(path) << "0 0.5 0.5 0.2 0.1\n1 0.1 0.1 0.1 0.1\n\n0 0.98 0.5 0.1 0.1\n0 0.3 0.3 0.0001 0.0001\n";
+  const std::vector<cv::Rect> boxes = readYoloBoxes(path, 0, cv::Size(200, 100));
+  ASSERT_EQ(boxes.size(), 3u);
+  EXPECT_EQ(boxes[0], cv::Rect(80, 45, 40, 10));
+  EXPECT_EQ(boxes[1], cv::Rect(186, 45, 14, 10));  // clamped at the right border
+  EXPECT_EQ(boxes[2], cv::Rect(60, 30, 1, 1));     // at least one pixel
+  EXPECT_TRUE(readYoloBoxes(dir + "/rle_vision_no_such_labels.txt", 0, cv::Size(200, 100)).empty());
+  EXPECT_EQ(yoloLabelPath("/a.b/frame.jpg"), "/a.b/frame.txt");
+  EXPECT_EQ(yoloLabelPath("/a.b/frame"), "/a.b/frame.txt");
+  std::ofstream(path) << "0 0.5 0.5 0.2 0.1 0.7 0.7\n";  // a polygon label
+  EXPECT_THROW(readYoloBoxes(path, 0, cv::Size(200, 100)), ConfigError);
+  std::ofstream(path) << "0 0.5 0.5 0 0.1\n";
+  EXPECT_THROW(readYoloBoxes(path, 0, cv::Size(200, 100)), ConfigError);
+  std::ofstream(path) << "0 1.5 0.5 0.1 0.1\n";
+  EXPECT_THROW(readYoloBoxes(path, 0, cv::Size(200, 100)), ConfigError);
+}
+
 TEST(ColorCalibration, BadExamplesGetAClearError) {
   const cv::Mat image = carpet();
   auto message = [&](const CalibrationExample& e) {
@@ -158,6 +193,10 @@ TEST(ColorCalibration, CmvisionTextReadsBackAndRefusesOtherSpaces) {
 std::string run(const std::string& command, int* status) {
   std::string out;
   FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) {
+    *status = -1;
+    return out;
+  }
   char buffer[4096];
   while (size_t n = fread(buffer, 1, sizeof(buffer), pipe)) out.append(buffer, n);
   *status = WEXITSTATUS(pclose(pipe));
@@ -187,13 +226,22 @@ TEST(CalibrateCli, WritesTheClassFromBoxesOrYoloLabelsAndRefusesBadInput) {
   const CalibrationResult core = calibrateColorClass({{"f", cv::imread(dir + "/f.png"), {box}}}, "ball");
   EXPECT_EQ(from_box[0].min, core.color_class.min);
   EXPECT_EQ(from_box[0].max, core.color_class.max);
-  // The same box as a YOLO label (class 3), and another class's label that must be ignored.
-  std::ofstream(dir + "/f.txt") << "1 0.1 0.1 0.05 0.05\n3 " << (box.x + box.width / 2.0) / 240 << " "
+  // The same box as a YOLO label (class 3), and another class's label, on a blue object, that
+  // must be ignored (taken, it would be dropped and counted, or widen the range).
+  cv::rectangle(image, cv::Rect(12, 9, 12, 9), cv::Scalar(200, 60, 30), cv::FILLED);
+  ASSERT_TRUE(cv::imwrite(dir + "/f.png", image));
+  const CalibrationResult expected = calibrateColorClass({{"f", cv::imread(dir + "/f.png"), {box}}}, "ball");
+  std::ofstream(dir + "/f.txt") << "1 0.075 0.075 0.05 0.05\n3 " << (box.x + box.width / 2.0) / 240 << " "
                                 << (box.y + box.height / 2.0) / 180 << " " << box.width / 240.0 << " "
                                 << box.height / 180.0 << "\n";
-  const std::string yaml = run(tool + " --name ball --label-class 3 " + dir + " 2>/dev/null", &status);
+  const std::string yaml = run(tool + " --name ball --label-class 3 " + dir + " 2>" + dir + "/summary", &status);
   EXPECT_EQ(status, 0);
-  EXPECT_EQ(parseColorClassesYaml(yaml.substr(0, yaml.find("[Colors]")), "stdout")[0].min, core.color_class.min);
+  const ColorClass from_labels = parseColorClassesYaml(yaml.substr(0, yaml.find("[Colors]")), "stdout")[0];
+  EXPECT_EQ(from_labels.min, expected.color_class.min);
+  EXPECT_EQ(from_labels.max, expected.color_class.max);
+  std::ifstream summary(dir + "/summary");
+  const std::string summary_text((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
+  EXPECT_NE(summary_text.find("1 boxes used, 0 dropped"), std::string::npos) << summary_text;
   // Bad input: exit 2 and a message naming the problem.
   run(tool + " --name ball " + dir + "/f.png --box 230,10,250,30 2>" + dir + "/err", &status);
   EXPECT_EQ(status, 2);
@@ -205,6 +253,10 @@ TEST(CalibrateCli, WritesTheClassFromBoxesOrYoloLabelsAndRefusesBadInput) {
   run(tool + " --name ball " + dir + "/f.png --box 5,5,5,9 2>/dev/null", &status);
   EXPECT_EQ(status, 2);
   run(tool + " --name ball " + dir + "/f.png --box 1,2,3 2>/dev/null", &status);
+  EXPECT_EQ(status, 2);
+  run(tool + " --name 'ball: x' " + dir + "/f.png" + box_arg + " 2>/dev/null", &status);
+  EXPECT_EQ(status, 2);
+  run(tool + " --name ball --min-area 0 " + dir + "/f.png" + box_arg + " 2>/dev/null", &status);
   EXPECT_EQ(status, 2);
 }
 
