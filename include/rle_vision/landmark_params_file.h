@@ -7,6 +7,7 @@
 #include <string>
 
 #include "rle_vision/color_learning.h"
+#include "rle_vision/color_learning_loop.h"
 #include "rle_vision/config_error.h"
 #include "rle_vision/landmark_detector.h"
 
@@ -18,6 +19,10 @@ LandmarkOptions parseLandmarkParams(const std::string& text, const std::string& 
 // Colour learning's parameters (the learning_* keys) from the same file.
 LearningOptions loadLearningParams(const std::string& path);
 LearningOptions parseLearningParams(const std::string& text, const std::string& origin);
+
+// The learning loop's (`learning`, `learning_publish_period_s`) from the same file.
+LearningLoopOptions loadLearningLoopParams(const std::string& path);
+LearningLoopOptions parseLearningLoopParams(const std::string& text, const std::string& origin);
 
 // A parameters file holding every key with its default, limits and meaning (comments).
 std::string defaultLandmarkParamsYaml();

@@ -121,4 +121,19 @@ LearningOptions parseLearningParams(const std::string& text, const std::string& 
 
 LearningOptions loadLearningParams(const std::string& path) { return parseLearningParams(yaml_reader::readFile(path), path); }
 
+LearningLoopOptions parseLearningLoopParams(const std::string& text, const std::string& origin) {
+  LearningLoopOptions o;
+  const YAML::Node root = parseChecked(text, origin);
+  if (!root || root.IsNull()) return o;
+#define RLE_LEARNING_LOOP_PARAM(key, member, type, default_value, min, max, description) read(origin, root, #key, &o.member, min, max);
+#include "rle_vision/landmark_params.def"
+  const std::string problem = validateLearningLoopOptions(o);
+  if (!problem.empty()) yaml_reader::fail(origin, root, problem);
+  return o;
+}
+
+LearningLoopOptions loadLearningLoopParams(const std::string& path) {
+  return parseLearningLoopParams(yaml_reader::readFile(path), path);
+}
+
 }  // namespace rle_vision

@@ -5,17 +5,6 @@
 namespace rle_vision {
 namespace {
 
-// Joins two sets; the smaller root index wins, so a root is always its region's first run.
-void unite(std::vector<Run>& runs, int32_t a, int32_t b) {
-  a = findRoot(runs, a);
-  b = findRoot(runs, b);
-  if (a < b) {
-    runs[b].parent = a;
-  } else if (b < a) {
-    runs[a].parent = b;
-  }
-}
-
 // Sum of k^2 for k = 0..n (n >= -1).
 inline int64_t sumOfSquares(int64_t n) { return n * (n + 1) * (2 * n + 1) / 6; }
 
@@ -36,8 +25,18 @@ void RegionBuilder::build(std::vector<Run>* runs_ptr, const std::vector<int32_t>
       const Run& run = runs[i];
       // Runs above that end left of this one cannot touch it nor any run further right.
       while (above < above_end && runs[above].x1 + reach < run.x0) ++above;
+      // Union by smaller index (a root is its set's first run), with this run's root kept at
+      // hand: only the runs above need finding.
+      int32_t root = i;
       for (int32_t j = above; j < above_end && runs[j].x0 <= run.x1 + reach; ++j) {
-        if (any_label || runs[j].label == run.label) unite(runs, i, j);
+        if (!any_label && runs[j].label != run.label) continue;
+        const int32_t other = findRoot(runs, j);
+        if (other < root) {
+          runs[root].parent = other;
+          root = other;
+        } else if (other > root) {
+          runs[other].parent = root;
+        }
       }
     }
   }
@@ -53,7 +52,10 @@ void RegionBuilder::accumulateMoments(std::vector<Run>* runs_ptr) {
   moments_.clear();
   for (int32_t i = 0; i < static_cast<int32_t>(runs.size()); ++i) {
     const Run& run = runs[i];
-    const int32_t root = findRoot(runs, i);
+    // A parent never has a larger index, and every earlier run already points at its root:
+    // the root is one step away.
+    const int32_t parent = run.parent;
+    const int32_t root = parent == i ? i : runs[parent].parent;
     runs[i].parent = root;  // flatten: callers can read a run's region from its parent
     if (root == i) {
       moment_index_[i] = static_cast<int32_t>(moments_.size());

@@ -20,16 +20,17 @@ namespace {
 
 #define RLE_VISION_AVX2 __attribute__((target("avx2")))
 
-// Y, U, V (int16, saturated to 0..255) of 16 pixels given as int16 r, g, b. Same fixed point
-// as OpenCV: y = (r*R2Y + g*G2Y + b*B2Y + round) >> 14, u = ((b - y)*B2U + round) >> 14 + 128.
+// Y, U, V (int16) of 16 pixels given as int16 r, g, b. Same fixed point as OpenCV:
+// y = (r*R2Y + g*G2Y + b*B2Y + round) >> 14, u = ((b - y)*B2U + round) >> 14 + 128 (v alike).
+// For u and v, mulhrs on twice the difference gives exactly (d*c + 2^13) >> 14: it computes
+// (2d*c + 2^14) >> 15, with no unpacking to 32 bits.
 RLE_VISION_AVX2 inline void yuv16(__m256i r, __m256i g, __m256i b, __m256i* y, __m256i* u,
                                   __m256i* v) {
   using namespace yuv_fixed_point;
+  static_assert(kRound == 1 << 13 && kShift == 14, "the mulhrs form needs the 14-bit fixed point");
   const __m256i one = _mm256_set1_epi16(1);
   const __m256i c_rg = _mm256_set1_epi32((kG2Y << 16) | kR2Y);       // pairs (r, g)
   const __m256i c_b1 = _mm256_set1_epi32((kRound << 16) | kB2Y);     // pairs (b, 1)
-  const __m256i c_u = _mm256_set1_epi32((kRound << 16) | kB2U);      // pairs (b - y, 1)
-  const __m256i c_v = _mm256_set1_epi32((kRound << 16) | kR2V);      // pairs (r - y, 1)
   const __m256i y_lo = _mm256_srai_epi32(
       _mm256_add_epi32(_mm256_madd_epi16(_mm256_unpacklo_epi16(r, g), c_rg),
                        _mm256_madd_epi16(_mm256_unpacklo_epi16(b, one), c_b1)), kShift);
@@ -40,14 +41,8 @@ RLE_VISION_AVX2 inline void yuv16(__m256i r, __m256i g, __m256i b, __m256i* y, _
   const __m256i by = _mm256_sub_epi16(b, *y);
   const __m256i ry = _mm256_sub_epi16(r, *y);
   const __m256i offset = _mm256_set1_epi16(128);
-  *u = _mm256_add_epi16(
-      _mm256_packs_epi32(_mm256_srai_epi32(_mm256_madd_epi16(_mm256_unpacklo_epi16(by, one), c_u), kShift),
-                         _mm256_srai_epi32(_mm256_madd_epi16(_mm256_unpackhi_epi16(by, one), c_u), kShift)),
-      offset);
-  *v = _mm256_add_epi16(
-      _mm256_packs_epi32(_mm256_srai_epi32(_mm256_madd_epi16(_mm256_unpacklo_epi16(ry, one), c_v), kShift),
-                         _mm256_srai_epi32(_mm256_madd_epi16(_mm256_unpackhi_epi16(ry, one), c_v), kShift)),
-      offset);
+  *u = _mm256_add_epi16(_mm256_mulhrs_epi16(_mm256_add_epi16(by, by), _mm256_set1_epi16(kB2U)), offset);
+  *v = _mm256_add_epi16(_mm256_mulhrs_epi16(_mm256_add_epi16(ry, ry), _mm256_set1_epi16(kR2V)), offset);
 }
 
 // Two groups of 16 int16 values (0..255 after saturation) to 32 bytes in pixel order.
@@ -61,15 +56,30 @@ RLE_VISION_AVX2 inline __m256i inBox(__m256i x, __m256i lo, __m256i span) {
   return _mm256_cmpeq_epi8(_mm256_min_epu8(d, span), d);
 }
 
+// The class boxes as byte vectors, made once per row instead of once per 32 pixels (the
+// broadcasts compete with the conversion's shuffles for one execution port).
+struct BoxVectors {
+  explicit RLE_VISION_AVX2 BoxVectors(const YuvBoxes& boxes) : count(boxes.count) {
+    for (int k = 0; k < count; ++k) {
+      for (int ch = 0; ch < 3; ++ch) {
+        lo[k][ch] = _mm256_set1_epi8(static_cast<char>(boxes.lo[k][ch]));
+        span[k][ch] = _mm256_set1_epi8(static_cast<char>(boxes.span[k][ch]));
+      }
+      label[k] = _mm256_set1_epi8(static_cast<char>(boxes.label[k]));
+    }
+  }
+  int count;
+  __m256i lo[kMaxColorClasses][3], span[kMaxColorClasses][3], label[kMaxColorClasses];
+};
+
 // Labels of 32 pixels from their Y, U, V bytes: later boxes overwrite earlier ones.
-RLE_VISION_AVX2 inline __m256i labelsOf(__m256i y, __m256i u, __m256i v, const YuvBoxes& boxes) {
+RLE_VISION_AVX2 inline __m256i labelsOf(__m256i y, __m256i u, __m256i v, const BoxVectors& boxes) {
   __m256i label = _mm256_setzero_si256();
   for (int k = 0; k < boxes.count; ++k) {
     const __m256i inside = _mm256_and_si256(
-        _mm256_and_si256(inBox(y, _mm256_set1_epi8(static_cast<char>(boxes.lo[k][0])), _mm256_set1_epi8(static_cast<char>(boxes.span[k][0]))),
-                         inBox(u, _mm256_set1_epi8(static_cast<char>(boxes.lo[k][1])), _mm256_set1_epi8(static_cast<char>(boxes.span[k][1])))),
-        inBox(v, _mm256_set1_epi8(static_cast<char>(boxes.lo[k][2])), _mm256_set1_epi8(static_cast<char>(boxes.span[k][2]))));
-    label = _mm256_blendv_epi8(label, _mm256_set1_epi8(static_cast<char>(boxes.label[k])), inside);
+        _mm256_and_si256(inBox(y, boxes.lo[k][0], boxes.span[k][0]), inBox(u, boxes.lo[k][1], boxes.span[k][1])),
+        inBox(v, boxes.lo[k][2], boxes.span[k][2]));
+    label = _mm256_blendv_epi8(label, boxes.label[k], inside);
   }
   return label;
 }
@@ -110,6 +120,7 @@ void classifyRowYuv422Avx2(const uint8_t* src, int width, bool is_uyvy, const Yu
   const __m256i y_lo = gatherMask(yo, false, false), y_hi = gatherMask(yo, false, true);
   const __m256i u_lo = gatherMask(uo, true, false), u_hi = gatherMask(uo, true, true);
   const __m256i v_lo = gatherMask(vo, true, false), v_hi = gatherMask(vo, true, true);
+  const BoxVectors box_vectors(boxes);
   int x = 0;
   for (; x + 32 <= width; x += 32) {
     // a: pixels x..x+15 (lanes: x..x+7 | x+8..x+15), b: pixels x+16..x+31.
@@ -119,7 +130,7 @@ void classifyRowYuv422Avx2(const uint8_t* src, int width, bool is_uyvy, const Yu
     const __m256i y = _mm256_permute4x64_epi64(_mm256_or_si256(_mm256_shuffle_epi8(a, y_lo), _mm256_shuffle_epi8(b, y_hi)), 0xD8);
     const __m256i u = _mm256_permute4x64_epi64(_mm256_or_si256(_mm256_shuffle_epi8(a, u_lo), _mm256_shuffle_epi8(b, u_hi)), 0xD8);
     const __m256i v = _mm256_permute4x64_epi64(_mm256_or_si256(_mm256_shuffle_epi8(a, v_lo), _mm256_shuffle_epi8(b, v_hi)), 0xD8);
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(labels + x), labelsOf(y, u, v, boxes));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(labels + x), labelsOf(y, u, v, box_vectors));
   }
   for (; x < width; ++x) {
     const uint8_t* pair = src + 4 * (x / 2);
@@ -141,6 +152,7 @@ void classifyRowYuvAvx2(const uint8_t* src, int width, bool src_is_rgb, const Yu
   const __m256i last_b = _mm256_broadcastsi128_si256(_mm_setr_epi8(-1, -1, -1, -1, -1, 1, 4, 7, 10, 13, -1, -1, -1, -1, -1, -1));
   const __m256i last_c = _mm256_broadcastsi128_si256(_mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 3, 6, 9, 12, 15));
 
+  const BoxVectors box_vectors(boxes);
   int x = 0;
   for (; x + 32 <= width; x += 32) {
     const uint8_t* p = src + 3 * x;
@@ -165,7 +177,7 @@ void classifyRowYuvAvx2(const uint8_t* src, int width, bool src_is_rgb, const Yu
     yuv16(_mm256_cvtepu8_epi16(_mm256_extracti128_si256(red8, 1)), _mm256_cvtepu8_epi16(_mm256_extracti128_si256(mid, 1)),
           _mm256_cvtepu8_epi16(_mm256_extracti128_si256(blue8, 1)), &y1, &u1, &v1);
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(labels + x),
-                        labelsOf(packBytes(y0, y1), packBytes(u0, u1), packBytes(v0, v1), boxes));
+                        labelsOf(packBytes(y0, y1), packBytes(u0, u1), packBytes(v0, v1), box_vectors));
   }
   // The last < 32 pixels, scalar.
   const int r_index = src_is_rgb ? 0 : 2;

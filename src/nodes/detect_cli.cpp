@@ -2,9 +2,10 @@
 // Prints one JSON object per image on stdout; unreadable files give an error entry and a
 // non-zero exit status at the end.
 //
-//   rle_vision_detect [--colors FILE] [--params FILE] [--annotate DIR] IMAGE...
+//   rle_vision_detect [--colors FILE] [--params FILE] [--annotate DIR] [--sequence [--fps HZ]] IMAGE...
 //   rle_vision_detect --print-params
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -14,6 +15,7 @@
 
 #include "detect_json.h"
 #include "rle_vision/color_config.h"
+#include "rle_vision/color_learning_loop.h"
 #include "rle_vision/data_files.h"
 #include "rle_vision/landmark_detector.h"
 #include "rle_vision/landmark_params_file.h"
@@ -25,11 +27,14 @@ namespace {
 using namespace rle_vision;
 
 const char* kUsage =
-    "usage: rle_vision_detect [--colors FILE] [--params FILE] [--annotate DIR] IMAGE...\n"
+    "usage: rle_vision_detect [--colors FILE] [--params FILE] [--annotate DIR] [--sequence [--fps HZ]] IMAGE...\n"
     "       rle_vision_detect --print-params\n"
     "  --colors FILE    colour classes: colors.yaml or CMVision colors.txt (default: the package's config/colors.yaml)\n"
     "  --params FILE    landmark parameters (default: their defaults; see --print-params)\n"
     "  --annotate DIR   also write DIR/<image name>.png with blobs, lines and the horizon drawn\n"
+    "  --sequence       the images, in the order given, are one camera stream at --fps (default 30):\n"
+    "                   blobs are tracked across them and colour ranges learned on one frame are used on\n"
+    "                   the next (parameters learning, learning_*); each line also gives the ranges in use\n"
     "  --print-params   print every landmark parameter with its default, limits and meaning (YAML), and exit\n"
     "Prints one JSON object per image: blobs, lines and horizon (theta in radians, x right, y down,\n"
     "intercept on y below 45 deg and on x from there; see docs/DESIGN.md section 3).\n";
@@ -37,7 +42,8 @@ const char* kUsage =
 struct Arguments {
   std::string colors_file = packageDataFile("config/colors.yaml");
   std::string params_file, annotate_dir;
-  bool print_params = false;
+  bool print_params = false, sequence = false;
+  double fps = 30;
   std::vector<std::string> images;
 };
 
@@ -53,8 +59,18 @@ bool parseArguments(int argc, char** argv, Arguments* args, int* exit_status) {
         return false;
       }
       (arg == "--colors" ? args->colors_file : arg == "--params" ? args->params_file : args->annotate_dir) = argv[++i];
+    } else if (arg == "--fps") {
+      char* end = nullptr;
+      args->fps = has_value ? std::strtod(argv[++i], &end) : 0;
+      if (!has_value || *end != '\0' || !(args->fps > 0 && args->fps < 1e6)) {
+        std::cerr << "rle_vision_detect: --fps needs a frame rate > 0 (Hz)\n" << kUsage;
+        *exit_status = 2;
+        return false;
+      }
     } else if (arg == "--print-params") {
       args->print_params = true;
+    } else if (arg == "--sequence") {
+      args->sequence = true;
     } else if (arg == "-h" || arg == "--help") {
       std::cout << kUsage << "Default colours file: "
                 << (args->colors_file.empty() ? "(not found: give --colors)" : args->colors_file) << "\n";
@@ -83,6 +99,19 @@ std::string baseName(const std::string& path) {
   return dot == std::string::npos ? name : name.substr(0, dot);
 }
 
+// Writes `out`: the image with blobs, lines and the horizon drawn.
+bool annotate(const cv::Mat& image, const std::vector<TrackedBlob>& blobs, const ColorTable& table,
+              const LandmarkResult& result, const std::string& out) {
+  cv::Mat canvas = image.clone();
+  drawBlobs(&canvas, blobs, table);
+  double roll = 0, pitch = 0;
+  if (result.horizon.found) horizonAttitude(result.horizon.line, nullptr, &roll, &pitch);
+  drawLandmarks(&canvas, result.lines, result.horizon, roll, pitch);
+  if (cv::imwrite(out, canvas)) return true;
+  std::cerr << "rle_vision_detect: cannot write " << out << "\n";
+  return false;
+}
+
 // Every image stands alone: the pipeline's steps on one image file.
 class ImageDetector {
  public:
@@ -109,28 +138,77 @@ class ImageDetector {
       return false;
     }
     std::cout << detectionJson(path, image.cols, image.rows, blobs, table_, result) << std::endl;
-    return annotate_dir.empty() || annotate(image, blobs, result, annotate_dir + "/" + baseName(path) + ".png");
+    return annotate_dir.empty() || annotate(image, blobs, table_, result, annotate_dir + "/" + baseName(path) + ".png");
   }
 
  private:
-  bool annotate(const cv::Mat& image, const std::vector<TrackedBlob>& blobs, const LandmarkResult& result,
-                const std::string& out) const {
-    cv::Mat canvas = image.clone();
-    drawBlobs(&canvas, blobs, table_);
-    double roll = 0, pitch = 0;
-    if (result.horizon.found) horizonAttitude(result.horizon.line, nullptr, &roll, &pitch);
-    drawLandmarks(&canvas, result.lines, result.horizon, roll, pitch);
-    if (cv::imwrite(out, canvas)) return true;
-    std::cerr << "rle_vision_detect: cannot write " << out << "\n";
-    return false;
-  }
-
   ColorTable table_;
   LandmarkOptions options_;
   Segmenter segmenter_;
   BlobTracker tracker_;
   LandmarkDetector detector_;
 };
+
+// The images are one camera stream, through the core the nodelets run: the Tracker's
+// Segmenter and BlobTracker with the current colour table, the Landmark's LandmarkDetector and
+// ColorLearningLoop; ranges the loop publishes replace the table from the next frame on, as
+// color_ranges does in the pipeline. Time is the frame index over the frame rate.
+class SequenceDetector {
+ public:
+  SequenceDetector(const std::vector<ColorClass>& classes, const LandmarkOptions& options,
+                   const LearningOptions& learning, const LearningLoopOptions& loop, double fps)
+      : table_(std::make_shared<const ColorTable>(classes)), options_(options), learning_(learning), loop_options_(loop),
+        loop_(classes), frame_period_s_(1.0 / fps) {}
+
+  bool run(const std::string& path, const std::string& annotate_dir) {
+    const double stamp_s = frame_period_s_ * frames_++;
+    const cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
+    if (image.empty()) {
+      std::cout << errorJson(path, "cannot read the image (missing, unreadable or not an image)") << std::endl;
+      return false;
+    }
+    std::vector<Region> regions;
+    std::vector<TrackedBlob> blobs;
+    LandmarkResult result;
+    ColorLearningLoop::Step step;
+    const std::shared_ptr<const ColorTable> table = table_;
+    try {
+      segmenter_.segment(image, PixelFormat::BGR8, *table, &regions);
+      tracker_.update(regions, stamp_s, &blobs);
+      detector_.detectInImage(image, options_, &result);
+      step = loop_options_.enabled ? loop_.learn(image, result, detector_.edgeObjects(), stamp_s, stamp_s, learning_,
+                                                 loop_options_.publish_period_s)
+                                   : loop_.stop(learning_);
+    } catch (const std::exception& e) {
+      std::cout << errorJson(path, e.what()) << std::endl;
+      return false;
+    }
+    if (step.publish) table_ = std::make_shared<const ColorTable>(step.classes);
+    std::cout << detectionJson(path, image.cols, image.rows, blobs, *table, result, true) << std::endl;
+    return annotate_dir.empty() || annotate(image, blobs, *table, result, annotate_dir + "/" + baseName(path) + ".png");
+  }
+
+ private:
+  std::shared_ptr<const ColorTable> table_;
+  LandmarkOptions options_;
+  LearningOptions learning_;
+  LearningLoopOptions loop_options_;
+  ColorLearningLoop loop_;
+  Segmenter segmenter_;
+  BlobTracker tracker_;
+  LandmarkDetector detector_;
+  double frame_period_s_;
+  long frames_ = 0;
+};
+
+int runSequence(const Arguments& args, const std::vector<ColorClass>& classes, const LandmarkOptions& options) {
+  const bool defaults = args.params_file.empty();
+  SequenceDetector sequence(classes, options, defaults ? LearningOptions() : loadLearningParams(args.params_file),
+                            defaults ? LearningLoopOptions() : loadLearningLoopParams(args.params_file), args.fps);
+  int failures = 0;
+  for (const std::string& path : args.images) failures += sequence.run(path, args.annotate_dir) ? 0 : 1;
+  return failures == 0 ? 0 : 1;
+}
 
 }  // namespace
 
@@ -149,6 +227,7 @@ int main(int argc, char** argv) {
                         "$RLE_VISION_DATA_DIR): give --colors FILE");
     }
     const LandmarkOptions options = args.params_file.empty() ? LandmarkOptions() : loadLandmarkParams(args.params_file);
+    if (args.sequence) return runSequence(args, loadColorClasses(args.colors_file), options);
     detector = std::make_unique<ImageDetector>(loadColorClasses(args.colors_file), options);
   } catch (const std::exception& e) {
     std::cerr << "rle_vision_detect: " << e.what() << "\n";

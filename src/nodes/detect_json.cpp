@@ -46,6 +46,18 @@ void horizonJson(std::ostringstream& json, const HorizonEstimate& h) {
   json << "}";
 }
 
+void rangesJson(std::ostringstream& json, const std::vector<ColorClass>& classes) {
+  auto channels = [](const Channels& c) {
+    return "[" + std::to_string(c[0]) + "," + std::to_string(c[1]) + "," + std::to_string(c[2]) + "]";
+  };
+  for (size_t i = 0; i < classes.size(); ++i) {
+    const ColorClass& c = classes[i];
+    json << (i ? "," : "") << "{\"name\":" << jsonString(c.name) << ",\"space\":\"" << toString(c.space)
+         << "\",\"min\":" << channels(c.min) << ",\"max\":" << channels(c.max) << ",\"source\":" << jsonString(c.source)
+         << "}";
+  }
+}
+
 }  // namespace
 
 std::string jsonString(const std::string& s) {
@@ -66,7 +78,7 @@ std::string jsonString(const std::string& s) {
 }
 
 std::string detectionJson(const std::string& file, int width, int height, const std::vector<TrackedBlob>& blobs,
-                          const ColorTable& table, const LandmarkResult& result) {
+                          const ColorTable& table, const LandmarkResult& result, bool ranges_in_use) {
   std::ostringstream json;
   json << "{\"file\":" << jsonString(file) << ",\"width\":" << width << ",\"height\":" << height << ",\"blobs\":[";
   blobsJson(json, blobs, table);
@@ -74,6 +86,11 @@ std::string detectionJson(const std::string& file, int width, int height, const 
   linesJson(json, result.lines);
   json << "],\"horizon\":";
   horizonJson(json, result.horizon);
+  if (ranges_in_use) {
+    json << ",\"ranges\":[";
+    rangesJson(json, table.classes());
+    json << "]";
+  }
   json << "}";
   return json.str();
 }

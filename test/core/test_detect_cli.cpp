@@ -2,8 +2,13 @@
 // unreadable file gives an error entry and a non-zero exit status, never a crash.
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -51,6 +56,69 @@ TEST(DetectCli, JsonPerImageAndErrorsForUnreadableFiles) {
   // Bad options fail at once with a usage message.
   run(std::string(RLE_VISION_DETECT) + " --colors /nonexistent.yaml " + good + " 2>/dev/null", &status);
   EXPECT_EQ(status, 2);
+}
+
+int countOf(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// --sequence: frames of the drifting-light scene (30 s, 2 frames a second) are one stream;
+// ranges learned on a frame are used on the next, so the boxes stay found as the light dims,
+// and each line says which ranges were in use.
+TEST(DetectCli, SequenceCarriesLearnedRangesFromFrameToFrame) {
+  const std::string dir = testing::TempDir() + "/rle_vision_sequence";
+  ASSERT_EQ(std::system(("rm -rf " + dir + " && mkdir -p " + dir).c_str()), 0);
+  const SceneSimulator simulator(loadSceneConfig(test::sourcePath("config/scene_drift.yaml")));
+  std::string frames;
+  for (int i = 0; i <= 60; ++i) {
+    char name[64];
+    std::snprintf(name, sizeof(name), "/frame_%03d.png", i);
+    ASSERT_TRUE(cv::imwrite(dir + name, simulator.render(i * 15, i * 0.5).image));
+    frames += " " + dir + name;
+  }
+  std::ofstream(dir + "/fixed.yaml") << "learning: false\n";
+  int status = 0;
+  const std::string learned = run(std::string(RLE_VISION_DETECT) + " --sequence --fps 2" + frames, &status);
+  ASSERT_EQ(status, 0);
+  const std::string fixed =
+      run(std::string(RLE_VISION_DETECT) + " --sequence --fps 2 --params " + dir + "/fixed.yaml" + frames, &status);
+  ASSERT_EQ(status, 0);
+  auto line = [](const std::string& text, int index) {
+    std::istringstream lines(text);
+    std::string l;
+    for (int i = 0; i <= index; ++i) std::getline(lines, l);
+    return l;
+  };
+  const std::string first = line(learned, 0), last_learned = line(learned, 60), last_fixed = line(fixed, 60);
+  EXPECT_EQ(countOf(first, "\"source\":\"config\""), 4) << first;
+  EXPECT_GE(countOf(last_learned, "\"source\":\"learned\""), 3) << last_learned;
+  EXPECT_EQ(countOf(last_fixed, "\"source\":\"learned\""), 0);
+  const int blobs_first = countOf(first, "\"color\":"), blobs_learned = countOf(last_learned, "\"color\":"),
+            blobs_fixed = countOf(last_fixed, "\"color\":");
+  std::printf("[ sequence ] blobs on the first frame %d; on the last: learning %d, fixed ranges %d\n", blobs_first,
+              blobs_learned, blobs_fixed);
+  EXPECT_GE(blobs_learned, blobs_first - 2);
+  EXPECT_LT(blobs_fixed, blobs_first / 2);
+  // Track ids carry over from frame to frame (not reset per image): three frames at 30 Hz.
+  auto ids = [](const std::string& json) {
+    const std::regex id("\"id\":([0-9]+),");
+    std::set<int> out;
+    for (std::sregex_iterator m(json.begin(), json.end(), id), end; m != end; ++m) out.insert(std::stoi((*m)[1].str()));
+    return out;
+  };
+  std::string video;
+  for (int i = 0; i < 3; ++i) {
+    const std::string name = dir + "/video_" + std::to_string(i) + ".png";
+    ASSERT_TRUE(cv::imwrite(name, simulator.render(i, i / 30.0).image));
+    video += " " + name;
+  }
+  const std::string tracked = run(std::string(RLE_VISION_DETECT) + " --sequence" + video, &status);
+  EXPECT_EQ(ids(line(tracked, 2)), ids(line(tracked, 0))) << tracked;
+  EXPECT_EQ(ids(line(tracked, 0)).size(), 10u);
+  EXPECT_EQ(line(run(std::string(RLE_VISION_DETECT) + " " + dir + "/frame_000.png", &status), 0).find("\"ranges\""),
+            std::string::npos);
 }
 
 }  // namespace

@@ -128,6 +128,46 @@ cv::Mat randomLabels(int rows, int cols, int classes, double background, std::mt
   return labels;
 }
 
+// Pixel by pixel: the runs of one row.
+std::vector<Run> referenceRuns(const std::vector<uint8_t>& row, int y) {
+  std::vector<Run> runs;
+  for (size_t x = 0; x < row.size();) {
+    size_t end = x;
+    while (end < row.size() && row[end] == row[x]) ++end;
+    if (row[x] != 0) {
+      runs.push_back(Run{static_cast<int32_t>(x), static_cast<int32_t>(end - 1), y,
+                         static_cast<int32_t>(runs.size()), row[x]});
+    }
+    x = end;
+  }
+  return runs;
+}
+
+TEST(RunLength, EqualsPixelByPixelOnRandomRows) {
+  // Every width up to 100 (the 32- and 8-label steps and their tails) and noisy to smooth rows.
+  std::mt19937 rng(3);
+  for (int width = 1; width <= 100; ++width) {
+    for (int change_per_mille : {0, 20, 300, 1000}) {
+      std::vector<uint8_t> row(width);
+      for (int x = 0; x < width; ++x) {
+        const bool change = x == 0 || static_cast<int>(rng() % 1000) < change_per_mille;
+        row[x] = change ? static_cast<uint8_t>(rng() % 4) : row[x - 1];
+      }
+      std::vector<rle_vision::Run> runs;
+      appendRowRuns(row.data(), width, 7, &runs);
+      const std::vector<rle_vision::Run> expected = referenceRuns(row, 7);
+      ASSERT_EQ(runs.size(), expected.size()) << "width " << width;
+      for (size_t i = 0; i < runs.size(); ++i) {
+        ASSERT_EQ(runs[i].x0, expected[i].x0) << "width " << width << " run " << i;
+        ASSERT_EQ(runs[i].x1, expected[i].x1);
+        ASSERT_EQ(runs[i].y, 7);
+        ASSERT_EQ(runs[i].label, expected[i].label);
+        ASSERT_EQ(runs[i].parent, static_cast<int32_t>(i));
+      }
+    }
+  }
+}
+
 TEST(RunLength, EncodesKnownRow) {
   const uint8_t row[] = {0, 1, 1, 0, 2, 2, 2, 2, 2, 2, 2, 2, 2, 2, 1, 0, 0, 3};
   std::vector<rle_vision::Run> runs;

@@ -79,7 +79,7 @@ class FaultRecoveryTest(unittest.TestCase):
         """Share of the simulator frames stamped in [start, end) (wall time) that got blobs."""
         frames = [m.header.stamp for m in self.truth.since(start) if m.header.stamp.to_sec() < end]
         done = {m.header.stamp for m in self.blobs.since(start)}
-        self.assertGreater(len(frames), 30)
+        self.assertGreaterEqual(len(frames), 20)  # the outage lasts at least 1 s (30 frames); jitter takes a few
         return sum(1 for s in frames if s in done) / float(len(frames))
 
     def test_kill_and_restart_landmark_then_tracker(self):
