@@ -74,19 +74,26 @@ cv::Mat noisyBenchmarkFrame(const std::string& source_dir, double sigma) {
 }
 
 // A real frame and a class calibrated on its folder's YOLO labels (class 0), as make eval
-// does; false when the folder has no labelled images.
+// does; false when the folder has no labelled boxes or the calibration fails.
 bool realFrame(const std::string& folder, cv::Mat* frame, std::vector<ColorClass>* classes) {
-  std::vector<CalibrationExample> examples;
-  for (const std::string& path : imagesInFolder(folder)) {
-    CalibrationExample e{path, cv::imread(path, cv::IMREAD_COLOR), {}};
-    if (e.bgr.empty()) continue;
-    e.boxes = readYoloBoxes(yoloLabelPath(path), 0, e.bgr.size());
-    examples.push_back(std::move(e));
+  try {
+    std::vector<CalibrationExample> examples;
+    size_t boxes = 0;
+    for (const std::string& path : imagesInFolder(folder)) {
+      CalibrationExample e{path, cv::imread(path, cv::IMREAD_COLOR), {}};
+      if (e.bgr.empty()) continue;
+      e.boxes = readYoloBoxes(yoloLabelPath(path), 0, e.bgr.size());
+      boxes += e.boxes.size();
+      examples.push_back(std::move(e));
+    }
+    if (boxes == 0) return false;
+    *frame = examples.front().bgr;
+    *classes = {calibrateColorClass(examples, "ball").color_class};
+    return true;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "no real frame from %s: %s\n", folder.c_str(), e.what());
+    return false;
   }
-  if (examples.empty()) return false;
-  *frame = examples.front().bgr;
-  *classes = {calibrateColorClass(examples, "ball").color_class};
-  return true;
 }
 
 }  // namespace

@@ -41,6 +41,7 @@ class RowRuns {
 // From x on, 8 labels at a time: the XOR of a word with the word one label earlier is
 // non-zero exactly in the bytes where a new run starts. Returns where it stopped.
 int scanWords(const uint8_t* labels, int width, int x, RowRuns* row) {
+  static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "byte i of a loaded word is label x + i");
   constexpr uint64_t kLowBits = 0x0101010101010101ull;
   for (; x + 8 <= width; x += 8) {
     uint64_t here, before;

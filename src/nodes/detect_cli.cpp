@@ -42,7 +42,7 @@ const char* kUsage =
 struct Arguments {
   std::string colors_file = packageDataFile("config/colors.yaml");
   std::string params_file, annotate_dir;
-  bool print_params = false, sequence = false;
+  bool print_params = false, sequence = false, fps_given = false;
   double fps = 30;
   std::vector<std::string> images;
 };
@@ -62,6 +62,7 @@ bool parseArguments(int argc, char** argv, Arguments* args, int* exit_status) {
     } else if (arg == "--fps") {
       char* end = nullptr;
       args->fps = has_value ? std::strtod(argv[++i], &end) : 0;
+      args->fps_given = true;
       if (!has_value || *end != '\0' || !(args->fps > 0 && args->fps < 1e6)) {
         std::cerr << "rle_vision_detect: --fps needs a frame rate > 0 (Hz)\n" << kUsage;
         *exit_status = 2;
@@ -83,6 +84,11 @@ bool parseArguments(int argc, char** argv, Arguments* args, int* exit_status) {
     } else {
       args->images.push_back(arg);
     }
+  }
+  if (args->fps_given && !args->sequence) {
+    std::cerr << "rle_vision_detect: --fps needs --sequence (single images have no time)\n" << kUsage;
+    *exit_status = 2;
+    return false;
   }
   if (args->images.empty() && !args->print_params) {
     std::cerr << kUsage;
@@ -183,7 +189,13 @@ class SequenceDetector {
       std::cout << errorJson(path, e.what()) << std::endl;
       return false;
     }
-    if (step.publish) table_ = std::make_shared<const ColorTable>(step.classes);
+    // As the tracker does with color_ranges: a set it cannot use is reported and the current
+    // table kept.
+    try {
+      if (step.publish) table_ = std::make_shared<const ColorTable>(step.classes);
+    } catch (const std::exception& e) {
+      std::cerr << "rle_vision_detect: ignoring learned ranges after " << path << ": " << e.what() << "\n";
+    }
     std::cout << detectionJson(path, image.cols, image.rows, blobs, *table, result, true) << std::endl;
     return annotate_dir.empty() || annotate(image, blobs, *table, result, annotate_dir + "/" + baseName(path) + ".png");
   }

@@ -12,6 +12,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "rle_vision/scene_file.h"
@@ -108,15 +109,28 @@ TEST(DetectCli, SequenceCarriesLearnedRangesFromFrameToFrame) {
     for (std::sregex_iterator m(json.begin(), json.end(), id), end; m != end; ++m) out.insert(std::stoi((*m)[1].str()));
     return out;
   };
-  std::string video;
+  // The scene (ids 1..10), then blank frames until those tracks are forgotten, then three
+  // frames of the scene: a tracker kept from image to image gives them new ids (11..20), the
+  // same on all three; a tracker per image would give 1..10 again.
+  std::string video = " " + dir + "/first.png";
+  ASSERT_TRUE(cv::imwrite(dir + "/first.png", simulator.render(0, 0.0).image));
+  ASSERT_TRUE(cv::imwrite(dir + "/blank.png", cv::Mat(480, 640, CV_8UC3, cv::Scalar(128, 128, 128))));
+  for (int i = 0; i < 6; ++i) video += " " + dir + "/blank.png";
   for (int i = 0; i < 3; ++i) {
     const std::string name = dir + "/video_" + std::to_string(i) + ".png";
     ASSERT_TRUE(cv::imwrite(name, simulator.render(i, i / 30.0).image));
     video += " " + name;
   }
   const std::string tracked = run(std::string(RLE_VISION_DETECT) + " --sequence" + video, &status);
-  EXPECT_EQ(ids(line(tracked, 2)), ids(line(tracked, 0))) << tracked;
-  EXPECT_EQ(ids(line(tracked, 0)).size(), 10u);
+  ASSERT_EQ(status, 0);
+  EXPECT_EQ(ids(line(tracked, 0)).size(), 10u) << tracked;
+  const std::set<int> later_ids = ids(line(tracked, 7));
+  EXPECT_EQ(later_ids.size(), 10u) << tracked;
+  EXPECT_GT(*later_ids.begin(), 10) << "a new tracker per image: " << tracked;
+  EXPECT_EQ(ids(line(tracked, 8)), later_ids);
+  EXPECT_EQ(ids(line(tracked, 9)), later_ids);
+  run(std::string(RLE_VISION_DETECT) + " --fps 10 " + dir + "/first.png 2>/dev/null", &status);
+  EXPECT_EQ(status, 2) << "--fps without --sequence";
   EXPECT_EQ(line(run(std::string(RLE_VISION_DETECT) + " " + dir + "/frame_000.png", &status), 0).find("\"ranges\""),
             std::string::npos);
 }
