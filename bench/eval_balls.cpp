@@ -18,6 +18,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "harness.h"
+#include "rle_vision/camera_stream.h"
 #include "rle_vision/color_calibration.h"
 #include "rle_vision/color_config.h"
 #include "rle_vision/segmenter.h"
@@ -107,12 +108,33 @@ class BallMethods {
 
 struct FolderScores {
   std::string folder;
-  Score ours, opencv;
+  Score ours, opencv, learned;
 };
 
-FolderScores evaluateFolder(const std::string& folder, int label_class, BallMethods* methods) {
+// The folder's images, in name order, as one camera stream at 30 Hz with colour learning
+// from blobs (rle_vision_detect --sequence with learning_from_blobs: true).
+void learnedSequence(const std::vector<std::string>& paths, const ColorClass& ball, int label_class, Score* s) {
+  CameraStreamOptions options;
+  options.learning.from_blobs = true;
+  CameraStream stream({ball}, options);
+  CameraStream::Frame frame;
+  for (size_t i = 0; i < paths.size(); ++i) {
+    const cv::Mat bgr = cv::imread(paths[i], cv::IMREAD_COLOR);
+    const auto start = std::chrono::steady_clock::now();
+    stream.process(bgr, static_cast<double>(i) / 30.0, &frame);
+    const double ms = msSince(start);
+    std::vector<cv::Point2d> blobs;
+    for (const TrackedBlob& b : frame.blobs) {
+      if (b.region.area >= kMinBlobArea) blobs.emplace_back(b.region.cx, b.region.cy);
+    }
+    score(blobs, readYoloBoxes(yoloLabelPath(paths[i]), label_class, bgr.size()), ms, s);
+  }
+}
+
+FolderScores evaluateFolder(const std::string& folder, int label_class, const ColorClass& ball, BallMethods* methods) {
   FolderScores f;
   f.folder = folder;
+  learnedSequence(imagesInFolder(folder), ball, label_class, &f.learned);
   for (const std::string& path : imagesInFolder(folder)) {
     const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
     if (bgr.empty()) throw std::runtime_error(path + ": cannot read the image");
@@ -149,6 +171,7 @@ void printRow(const std::string& folder, const std::string& method, const Score&
 
 const char* kOurs = "ours, calibrated range (fixed)";
 const char* kOpenCv = "OpenCV cvtColor+inRange+connectedComponents";
+const char* kLearned = "ours, --sequence, learning from blobs";
 
 void report(const std::string& calibrate_dir, const CalibrationResult& calibration,
             const std::vector<FolderScores>& folders, const std::string& json_path) {
@@ -158,7 +181,7 @@ void report(const std::string& calibrate_dir, const CalibrationResult& calibrati
               c.max[0], c.max[1], c.max[2]);
   std::printf("%-12s %-44s %6s %7s %6s %9s %8s\n", "folder", "method", "balls", "recall", "blobs", "precision",
               "ms/frame");
-  Score ours_total, opencv_total;
+  Score ours_total, opencv_total, learned_total;
   std::ostringstream json;
   json << "{\n  \"calibrated_on\": \"" << calibrate_dir << "\",\n  \"machine\": \"" << bench::machineName()
        << "\",\n  \"date\": \"" << bench::todayUtc() << "\",\n  \"range\": {\"min\": [" << int(c.min[0]) << ", "
@@ -169,15 +192,18 @@ void report(const std::string& calibrate_dir, const CalibrationResult& calibrati
     const std::string name = f.folder.substr(f.folder.find_last_of('/') + 1);
     printRow(name, kOurs, f.ours);
     printRow(name, kOpenCv, f.opencv);
+    printRow(name, kLearned, f.learned);
     ours_total.add(f.ours);
     opencv_total.add(f.opencv);
+    learned_total.add(f.learned);
     json << (i ? "," : "") << "\n    \"" << name << "\": {\"" << kOurs << "\": " << scoreJson(f.ours) << ", \""
-         << kOpenCv << "\": " << scoreJson(f.opencv) << "}";
+         << kOpenCv << "\": " << scoreJson(f.opencv) << ", \"" << kLearned << "\": " << scoreJson(f.learned) << "}";
   }
   printRow("all", kOurs, ours_total);
   printRow("all", kOpenCv, opencv_total);
+  printRow("all", kLearned, learned_total);
   json << "\n  },\n  \"methods\": {\"" << kOurs << "\": " << scoreJson(ours_total) << ", \"" << kOpenCv
-       << "\": " << scoreJson(opencv_total) << "}\n}\n";
+       << "\": " << scoreJson(opencv_total) << ", \"" << kLearned << "\": " << scoreJson(learned_total) << "}\n}\n";
   if (!json_path.empty()) {
     std::ofstream(json_path) << json.str();
     std::printf("wrote %s\n", json_path.c_str());
@@ -207,7 +233,9 @@ int main(int argc, char** argv) {
     const CalibrationResult calibration = calibrate(calibrate_dir, std::stoi(label_class));
     BallMethods methods(calibration.color_class);
     std::vector<FolderScores> scores;
-    for (const std::string& folder : folders) scores.push_back(evaluateFolder(folder, std::stoi(label_class), &methods));
+    for (const std::string& folder : folders) {
+      scores.push_back(evaluateFolder(folder, std::stoi(label_class), calibration.color_class, &methods));
+    }
     report(calibrate_dir, calibration, scores, json_path);
   } catch (const std::exception& e) {
     std::cerr << "rle_vision_eval_balls: " << e.what() << "\n";

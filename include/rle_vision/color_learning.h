@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 
 #include "rle_vision/color_class.h"
 #include "rle_vision/landmark_detector.h"
+#include "rle_vision/segmenter.h"
 
 namespace rle_vision {
 
@@ -124,6 +126,9 @@ class ColorLearner {
                      const Spaces& spaces, std::vector<std::vector<ColorStats>>* matched);
   void measureMode(const cv::Mat& bgr, const RegionPixels& pixels, const std::vector<int>& mode,
                    const HorizonEstimate& horizon, const Spaces& spaces, Measurement* m);
+  void measureBlobs(const cv::Mat& bgr, const HorizonEstimate& horizon, std::vector<std::vector<ColorStats>>* matched);
+  void measureBlob(const cv::Mat& bgr, const Region& region, const HorizonEstimate& horizon, Measurement* m);
+  void blobPixels(const cv::Mat& bgr, const Region& region, int k, std::vector<Channels>* pixels) const;
   int nearestClass(const Measurement& m) const;
   void applyMatched(const std::vector<std::vector<ColorStats>>& matched, double stamp_s);
   Rejection apply(int k, const ColorStats& measured, double stamp_s, int* conflicting_class);
@@ -143,6 +148,10 @@ class ColorLearner {
   bool have_ground_[kNumColorSpaces] = {false, false, false}, have_sky_[kNumColorSpaces] = {false, false, false};
   ColorStats ground_[kNumColorSpaces], sky_[kNumColorSpaces];
   int created_ = 0;
+  // from_blobs: the current classes' blobs, segmented here as the tracker does.
+  std::unique_ptr<ColorTable> blob_table_;  // built from classes_; null when they changed
+  Segmenter blob_segmenter_;
+  std::vector<Region> blob_regions_;
 };
 
 }  // namespace rle_vision

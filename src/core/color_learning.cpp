@@ -330,6 +330,7 @@ bool ColorLearner::update(const cv::Mat& bgr, const LandmarkResult& landmarks, c
   for (const DetectedLine& l : landmarks.lines) by_object[l.object].push_back(&l);
   std::vector<std::vector<ColorStats>> matched(configured_.size());
   for (const auto& entry : by_object) measureRegion(bgr, entry.second, landmarks.horizon, spaces, &matched);
+  if (options_.from_blobs) measureBlobs(bgr, landmarks.horizon, &matched);
   applyMatched(matched, stamp_s);
   driftBack(stamp_s);
   if (options_.create_classes) createClasses(stamp_s);
@@ -540,7 +541,76 @@ bool ColorLearner::updateClassSet() {
     changed = next[k].min != classes_[k].min || next[k].max != classes_[k].max || next[k].source != classes_[k].source;
   }
   classes_ = std::move(next);
+  if (changed) blob_table_.reset();
   return changed;
+}
+
+void ColorLearner::measureBlobs(const cv::Mat& bgr, const HorizonEstimate& horizon,
+                                std::vector<std::vector<ColorStats>>* matched) {
+  // The blobs the tracker sees with the current classes (it gets them on color_ranges).
+  if (!blob_table_) blob_table_ = std::make_unique<ColorTable>(classes_);
+  blob_segmenter_.segment(bgr, PixelFormat::BGR8, *blob_table_, &blob_regions_);
+  for (const Region& region : blob_regions_) {
+    const int k = region.label - 1;
+    if (k >= static_cast<int>(configured_.size()) || wrapped(configured_[k]) || region.area < options_.blob_min_px) {
+      continue;
+    }
+    Measurement m;
+    m.pixels_box = cv::Rect(region.left, region.top, region.right - region.left + 1, region.bottom - region.top + 1);
+    m.region = {cv::Point2d(region.left, region.top), cv::Point2d(region.right, region.top),
+                cv::Point2d(region.right, region.bottom), cv::Point2d(region.left, region.bottom)};
+    measureBlob(bgr, region, horizon, &m);
+    if (m.matched_class >= 0) (*matched)[k].push_back(m.stats[static_cast<int>(configured_[k].space)]);
+    measurements_.push_back(m);
+  }
+}
+
+void ColorLearner::measureBlob(const cv::Mat& bgr, const Region& region, const HorizonEstimate& horizon,
+                               Measurement* m) {
+  const int k = region.label - 1;
+  if (horizon.found && std::min(signedDistance(horizon.line, region.left, region.top),
+                                signedDistance(horizon.line, region.right, region.top)) < options_.horizon_margin_px) {
+    return reject(m, Rejection::kAboveHorizon);
+  }
+  std::vector<Channels> pixels;
+  blobPixels(bgr, region, k, &pixels);
+  ColorStats& stats = m->stats[static_cast<int>(configured_[k].space)];
+  if (!colorStats(pixels, &stats)) return reject(m, Rejection::kTooSmall);
+  for (int ch = 0; ch < 3; ++ch) {
+    if (stats.sigma[ch] > options_.max_sigma) return reject(m, Rejection::kMixedColours);
+  }
+  // Still its own class's colour (a blob is in range; with the ring it may have moved).
+  double d2 = 0;
+  for (int ch = 0; ch < 3; ++ch) {
+    const double centre = 0.5 * (state_[k].lo[ch] + state_[k].hi[ch]);
+    d2 += (stats.mean[ch] - centre) * (stats.mean[ch] - centre);
+  }
+  if (std::sqrt(d2) > options_.match_gate) return reject(m, Rejection::kNoClass);
+  if (isBackground(configured_[k].space, stats)) return reject(m, Rejection::kBackground);
+  m->matched_class = k;
+}
+
+void ColorLearner::blobPixels(const cv::Mat& bgr, const Region& region, int k, std::vector<Channels>* pixels) const {
+  // The object's pixels: in the blob's box and a ring of blob_ring_px around it, those whose
+  // colour lies in the class's range or within blob_ring_margin of it. Not only the blob's
+  // own pixels: those are cut at the range, so their spread would only ever shrink it, and an
+  // object whose colour drifts out of the range would be lost instead of followed.
+  const int ring = options_.blob_ring_px;
+  const cv::Rect box = cv::Rect(region.left - ring, region.top - ring, region.right - region.left + 1 + 2 * ring,
+                                region.bottom - region.top + 1 + 2 * ring) &
+                       cv::Rect(0, 0, bgr.cols, bgr.rows);
+  const cv::Mat colours = convertBgrImage(bgr(box), configured_[k].space);
+  const double margin = options_.blob_ring_margin;
+  for (int y = 0; y < box.height; ++y) {
+    const cv::Vec3b* c = colours.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < box.width; ++x) {
+      bool near_class = true;
+      for (int ch = 0; ch < 3; ++ch) {
+        near_class = near_class && c[x][ch] >= state_[k].lo[ch] - margin && c[x][ch] <= state_[k].hi[ch] + margin;
+      }
+      if (near_class) pixels->push_back(Channels{{c[x][0], c[x][1], c[x][2]}});
+    }
+  }
 }
 
 }  // namespace rle_vision

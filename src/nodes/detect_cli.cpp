@@ -14,8 +14,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "detect_json.h"
+#include "rle_vision/camera_stream.h"
 #include "rle_vision/color_config.h"
-#include "rle_vision/color_learning_loop.h"
 #include "rle_vision/data_files.h"
 #include "rle_vision/landmark_detector.h"
 #include "rle_vision/landmark_params_file.h"
@@ -155,16 +155,12 @@ class ImageDetector {
   LandmarkDetector detector_;
 };
 
-// The images are one camera stream, through the core the nodelets run: the Tracker's
-// Segmenter and BlobTracker with the current colour table, the Landmark's LandmarkDetector and
-// ColorLearningLoop; ranges the loop publishes replace the table from the next frame on, as
-// color_ranges does in the pipeline. Time is the frame index over the frame rate.
+// The images are one camera stream (rle_vision/camera_stream.h); time is the frame index over
+// the frame rate.
 class SequenceDetector {
  public:
-  SequenceDetector(const std::vector<ColorClass>& classes, const LandmarkOptions& options,
-                   const LearningOptions& learning, const LearningLoopOptions& loop, double fps)
-      : table_(std::make_shared<const ColorTable>(classes)), options_(options), learning_(learning), loop_options_(loop),
-        loop_(classes), frame_period_s_(1.0 / fps) {}
+  SequenceDetector(const std::vector<ColorClass>& classes, const CameraStreamOptions& options, double fps)
+      : stream_(classes, options), frame_period_s_(1.0 / fps) {}
 
   bool run(const std::string& path, const std::string& annotate_dir) {
     const double stamp_s = frame_period_s_ * frames_++;
@@ -173,50 +169,36 @@ class SequenceDetector {
       std::cout << errorJson(path, "cannot read the image (missing, unreadable or not an image)") << std::endl;
       return false;
     }
-    std::vector<Region> regions;
-    std::vector<TrackedBlob> blobs;
-    LandmarkResult result;
-    ColorLearningLoop::Step step;
-    const std::shared_ptr<const ColorTable> table = table_;
+    CameraStream::Frame frame;
     try {
-      segmenter_.segment(image, PixelFormat::BGR8, *table, &regions);
-      tracker_.update(regions, stamp_s, &blobs);
-      detector_.detectInImage(image, options_, &result);
-      step = loop_options_.enabled ? loop_.learn(image, result, detector_.edgeObjects(), stamp_s, stamp_s, learning_,
-                                                 loop_options_.publish_period_s)
-                                   : loop_.stop(learning_);
+      stream_.process(image, stamp_s, &frame);
     } catch (const std::exception& e) {
       std::cout << errorJson(path, e.what()) << std::endl;
       return false;
     }
-    // As the tracker does with color_ranges: a set it cannot use is reported and the current
-    // table kept.
-    try {
-      if (step.publish) table_ = std::make_shared<const ColorTable>(step.classes);
-    } catch (const std::exception& e) {
-      std::cerr << "rle_vision_detect: ignoring learned ranges after " << path << ": " << e.what() << "\n";
+    if (!frame.ignored_ranges.empty()) {
+      std::cerr << "rle_vision_detect: ignoring learned ranges after " << path << ": " << frame.ignored_ranges << "\n";
     }
-    std::cout << detectionJson(path, image.cols, image.rows, blobs, *table, result, true) << std::endl;
-    return annotate_dir.empty() || annotate(image, blobs, *table, result, annotate_dir + "/" + baseName(path) + ".png");
+    std::cout << detectionJson(path, image.cols, image.rows, frame.blobs, *frame.table, frame.landmarks, true)
+              << std::endl;
+    return annotate_dir.empty() ||
+           annotate(image, frame.blobs, *frame.table, frame.landmarks, annotate_dir + "/" + baseName(path) + ".png");
   }
 
  private:
-  std::shared_ptr<const ColorTable> table_;
-  LandmarkOptions options_;
-  LearningOptions learning_;
-  LearningLoopOptions loop_options_;
-  ColorLearningLoop loop_;
-  Segmenter segmenter_;
-  BlobTracker tracker_;
-  LandmarkDetector detector_;
+  CameraStream stream_;
   double frame_period_s_;
   long frames_ = 0;
 };
 
 int runSequence(const Arguments& args, const std::vector<ColorClass>& classes, const LandmarkOptions& options) {
-  const bool defaults = args.params_file.empty();
-  SequenceDetector sequence(classes, options, defaults ? LearningOptions() : loadLearningParams(args.params_file),
-                            defaults ? LearningLoopOptions() : loadLearningLoopParams(args.params_file), args.fps);
+  CameraStreamOptions stream;
+  stream.landmark = options;
+  if (!args.params_file.empty()) {
+    stream.learning = loadLearningParams(args.params_file);
+    stream.loop = loadLearningLoopParams(args.params_file);
+  }
+  SequenceDetector sequence(classes, stream, args.fps);
   int failures = 0;
   for (const std::string& path : args.images) failures += sequence.run(path, args.annotate_dir) ? 0 : 1;
   return failures == 0 ? 0 : 1;

@@ -168,6 +168,102 @@ TEST(ColorLearner, AGroundColouredObjectNeverWidensAClass) {
   EXPECT_TRUE(refused);
 }
 
+// A small ball (a disc, radius 5 px, 81 px: no lines bound it) on the ground of the box frame,
+// brightness `gain` of its colour, with sensor noise.
+cv::Mat ballFrame(double gain, uint32_t seed) {
+  cv::Mat image = boxFrame(cv::Scalar(50, 140, 40)).image;  // the box ground-coloured: no box
+  cv::circle(image, cv::Point(200, 170), 5, cv::Scalar(40 * gain, 120 * gain, 240 * gain), cv::FILLED);
+  cv::Mat noise(image.size(), CV_16SC3);
+  cv::theRNG().state = seed;
+  cv::randn(noise, 0, 2);
+  cv::Mat sum;
+  image.convertTo(sum, CV_16SC3);
+  sum += noise;
+  sum.convertTo(image, CV_8UC3);
+  return image;
+}
+
+// The ball's class, measured on the first frame as rle_vision_calibrate would (mean +- 15).
+ColorClass ballClass() {
+  const Channels yuv = yuvFromRgb(240, 120, 40);
+  Channels lo, hi;
+  for (int ch = 0; ch < 3; ++ch) lo[ch] = saturateToByte(yuv[ch] - 15), hi[ch] = saturateToByte(yuv[ch] + 15);
+  return test::makeClass("ball", ColorSpace::YUV, lo, hi, 20);
+}
+
+// Whether the class finds the ball in the frame: a region of it near the disc's centre.
+bool findsBall(const ColorClass& ball, const cv::Mat& image) {
+  Segmenter segmenter;
+  std::vector<Region> regions;
+  segmenter.segment(image, PixelFormat::BGR8, ColorTable({ball}), &regions);
+  return std::any_of(regions.begin(), regions.end(), [](const Region& r) { return std::hypot(r.cx - 200, r.cy - 170) < 3; });
+}
+
+TEST(ColorLearner, BlobsLetASmallObjectFollowTheLight) {
+  // The ball dims to 55% over 60 frames; no lines bound it, so only its blob can teach.
+  for (const bool from_blobs : {false, true}) {
+    LearningOptions options;
+    options.from_blobs = from_blobs;
+    ColorLearner learner({ballClass()}, options);
+    LandmarkDetector detector;
+    LandmarkResult landmarks;
+    int found = 0;
+    for (int i = 0; i <= 60; ++i) {
+      const cv::Mat image = ballFrame(1.0 - 0.45 * i / 60.0, 100 + i);
+      found += findsBall(learner.classes()[0], image);
+      detector.detectInImage(image, LandmarkOptions(), &landmarks);
+      learner.update(image, landmarks, detector.edgeObjects(), i / 30.0);
+    }
+    std::printf("[ small ball ] learning from blobs %s: found in %d of 61 frames\n", from_blobs ? "on " : "off", found);
+    if (from_blobs) {
+      EXPECT_GE(found, 58);
+      EXPECT_EQ(learner.classes()[0].source, "learned");
+    } else {
+      EXPECT_LT(found, 45);
+      EXPECT_EQ(learner.classes()[0].source, "config");
+    }
+  }
+}
+
+cv::Scalar bgrOfYuv(int y, int u, int v) {
+  cv::Mat yuv(1, 1, CV_8UC3, cv::Scalar(y, u, v)), bgr;
+  cv::cvtColor(yuv, bgr, cv::COLOR_YUV2BGR);
+  return cv::Scalar(bgr.at<cv::Vec3b>(0, 0));
+}
+
+TEST(ColorLearner, BlobUpdatesThatWouldOverlapTheGroundAreRefused) {
+  // A ball class just above the ground's brightness; the ball's core is in it, its rim nearly
+  // ground-coloured (within the ring margin): taking the rim would stretch the class over the
+  // ground, so the measurement is refused and the class stays off the ground.
+  const Channels g = yuvFromRgb(40, 140, 50);
+  const ColorClass ball = test::makeClass("ball", ColorSpace::YUV, {{static_cast<uint8_t>(g[0] + 14), g[1], g[2]}},
+                                          {{static_cast<uint8_t>(g[0] + 40), static_cast<uint8_t>(g[1] + 20),
+                                            static_cast<uint8_t>(g[2] + 20)}}, 20);
+  LearningOptions options;
+  options.from_blobs = true;
+  ColorLearner learner({ball}, options);
+  SyntheticFrame f = boxFrame(cv::Scalar(50, 140, 40));  // the box ground-coloured: no box
+  f.landmarks.lines.clear();
+  cv::circle(f.image, cv::Point(200, 170), 9, bgrOfYuv(g[0] + 4, g[1] + 2, g[2] + 2), cv::FILLED);  // the rim
+  cv::circle(f.image, cv::Point(200, 170), 6, bgrOfYuv(g[0] + 26, g[1] + 8, g[2] + 8), cv::FILLED);  // the core
+  for (int i = 0; i < 20; ++i) learner.update(f.image, f.landmarks, f.objects, i / 30.0);
+  const ColorStats* ground = learner.groundStats(ColorSpace::YUV);
+  ASSERT_NE(ground, nullptr);
+  const ColorClass& c = learner.classes()[0];
+  bool overlaps_ground = true;
+  for (int ch = 0; ch < 3; ++ch) overlaps_ground = overlaps_ground && !(c.max[ch] < ground->lo[ch] || ground->hi[ch] < c.min[ch]);
+  EXPECT_FALSE(overlaps_ground);
+  EXPECT_EQ(c.min, ball.min);
+  EXPECT_EQ(c.max, ball.max);
+  bool refused = false, measured = false;
+  for (const auto& m : learner.lastMeasurements()) {
+    measured = measured || m.pixels_box.contains(cv::Point(200, 170));
+    refused = refused || m.rejected.find("ground") != std::string::npos;
+  }
+  EXPECT_TRUE(measured) << "the ball's blob must have been measured";
+  EXPECT_TRUE(refused);
+}
+
 TEST(ColorLearner, RegionsAtTheHorizonAreNotObstacles) {
   ColorLearner learner(obstacleClasses(), LearningOptions());
   SyntheticFrame f = boxFrame(cv::Scalar(30, 30, 150));

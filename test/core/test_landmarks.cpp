@@ -292,7 +292,7 @@ TEST(LandmarkParams, DefaultsFileRoundTripsEveryParameter) {
   RLE_EXPECT_READ_BACK(key, learning.member, learning_defaults.member)
 #include "rle_vision/landmark_params.def"
 #undef RLE_EXPECT_READ_BACK
-  EXPECT_EQ(keys, 48);
+  EXPECT_EQ(keys, 52);
   // Values that differ from the defaults are read, too.
   EXPECT_EQ(parseLandmarkParams("gray_threshold: 40\nthin_edges: false\nseed: 7\n", "l.yaml").objects.gray_threshold, 40);
   EXPECT_EQ(parseLandmarkParams("seed: 7\n", "l.yaml").hough.seed, 7u);
