@@ -120,6 +120,7 @@ void learnedSequence(const std::vector<std::string>& paths, const ColorClass& ba
   CameraStream::Frame frame;
   for (size_t i = 0; i < paths.size(); ++i) {
     const cv::Mat bgr = cv::imread(paths[i], cv::IMREAD_COLOR);
+    if (bgr.empty()) throw std::runtime_error(paths[i] + ": cannot read the image");
     const auto start = std::chrono::steady_clock::now();
     stream.process(bgr, static_cast<double>(i) / 30.0, &frame);
     const double ms = msSince(start);

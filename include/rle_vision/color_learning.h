@@ -80,11 +80,12 @@ class ColorLearner {
     kOverlapsSky,    // ... the sky's
     kOverlapsClass,  // ... another class's (conflicting_class)
   };
-  // What the last update saw, for tests and debug views.
-  // One colour mode of one region.
+  // What the last update saw, for tests and debug views: one colour mode of one region
+  // bounded by lines, or (from_blob) one blob of a class.
   struct Measurement {
-    std::vector<cv::Point2d> region;
-    cv::Rect pixels_box;                // where the mode's pixels lie
+    std::vector<cv::Point2d> region;    // the region's outline (a blob's: its box)
+    cv::Rect pixels_box;                // where the mode's pixels lie (a blob's box, without the ring)
+    bool from_blob = false;
     ColorStats stats[kNumColorSpaces];  // per space used by the classes
     int matched_class = -1;             // -1: none
     Rejection rejection = Rejection::kNone;

@@ -172,6 +172,7 @@ int ColorLearner::resume(const std::vector<ColorClass>& learned, double stamp_s)
       break;
     }
   }
+  if (resumed > 0) blob_table_.reset();  // blobs are segmented with the ranges the tracker uses
   return resumed;
 }
 
@@ -242,11 +243,13 @@ void ColorLearner::reject(Measurement* m, Rejection why, int conflicting_class) 
   m->conflicting_class = conflicting_class;
   switch (why) {
     case Rejection::kNone: m->rejected.clear(); break;
-    case Rejection::kTooSmall: m->rejected = "too small"; break;
+    case Rejection::kTooSmall: m->rejected = m->from_blob ? "no pixels near its class" : "too small"; break;
     case Rejection::kAboveHorizon: m->rejected = "at or above the horizon"; break;
     case Rejection::kMixedColours: m->rejected = "mixed colours (one channel spreads more than max_sigma)"; break;
     case Rejection::kBackground: m->rejected = "the ground's or the sky's colour"; break;
-    case Rejection::kNoClass: m->rejected = "matches no class"; break;
+    case Rejection::kNoClass:
+      m->rejected = m->from_blob ? "its colour left its class's match gate" : "matches no class";
+      break;
     case Rejection::kOverlapsGround: m->rejected = "the range would overlap the ground's colour"; break;
     case Rejection::kOverlapsSky: m->rejected = "the range would overlap the sky's colour"; break;
     case Rejection::kOverlapsClass:
@@ -473,7 +476,8 @@ void ColorLearner::createClasses(double stamp_s) {
   // New classes from persistent unmatched regions.
   const int yuv = static_cast<int>(ColorSpace::YUV);
   for (const Measurement& m : measurements_) {
-    if (m.rejection != Rejection::kNoClass || m.stats[yuv].pixels < options_.min_new_class_px) continue;
+    // A blob that left its class's gate is that class drifting, not a new colour.
+    if (m.from_blob || m.rejection != Rejection::kNoClass || m.stats[yuv].pixels < options_.min_new_class_px) continue;
     const ColorStats& st = m.stats[yuv];
     if (isBackground(ColorSpace::YUV, st)) continue;
     Candidate* same = nullptr;
@@ -568,8 +572,12 @@ void ColorLearner::measureBlobs(const cv::Mat& bgr, const HorizonEstimate& horiz
 void ColorLearner::measureBlob(const cv::Mat& bgr, const Region& region, const HorizonEstimate& horizon,
                                Measurement* m) {
   const int k = region.label - 1;
-  if (horizon.found && std::min(signedDistance(horizon.line, region.left, region.top),
-                                signedDistance(horizon.line, region.right, region.top)) < options_.horizon_margin_px) {
+  m->from_blob = true;
+  // The whole measured box, ring included, must lie below the horizon.
+  const int top = region.top - options_.blob_ring_px, left = region.left - options_.blob_ring_px,
+            right = region.right + options_.blob_ring_px;
+  if (horizon.found && std::min(signedDistance(horizon.line, left, top), signedDistance(horizon.line, right, top)) <
+                           options_.horizon_margin_px) {
     return reject(m, Rejection::kAboveHorizon);
   }
   std::vector<Channels> pixels;

@@ -78,7 +78,9 @@ void drawLearning(cv::Mat* canvas, const std::vector<ColorLearner::Measurement>&
     for (const cv::Point2d& p : m.region) polygon.emplace_back(cvRound(p.x), cvRound(p.y));
     if (polygon.size() < 3) continue;
     const bool applied = m.rejected.empty();
-    const cv::Scalar colour = applied ? cv::Scalar(255, 255, 255) : cv::Scalar(0, 0, 255);
+    // Applied: white (a blob: cyan); refused: red (a blob: orange).
+    const cv::Scalar colour = applied ? (m.from_blob ? cv::Scalar(255, 255, 0) : cv::Scalar(255, 255, 255))
+                                      : (m.from_blob ? cv::Scalar(0, 128, 255) : cv::Scalar(0, 0, 255));
     if (applied) cv::polylines(*canvas, polygon, true, colour, 1, cv::LINE_AA);
     if (m.pixels_box.empty()) continue;
     cv::rectangle(*canvas, m.pixels_box, colour, 1);

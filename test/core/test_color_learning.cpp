@@ -231,10 +231,10 @@ cv::Scalar bgrOfYuv(int y, int u, int v) {
   return cv::Scalar(bgr.at<cv::Vec3b>(0, 0));
 }
 
-TEST(ColorLearner, BlobUpdatesThatWouldOverlapTheGroundAreRefused) {
+TEST(ColorLearner, BlobMeasurementsReachingTheGroundAreRefused) {
   // A ball class just above the ground's brightness; the ball's core is in it, its rim nearly
-  // ground-coloured (within the ring margin): taking the rim would stretch the class over the
-  // ground, so the measurement is refused and the class stays off the ground.
+  // ground-coloured (within the ring margin): the measurement with the rim spans the ground's
+  // colour, so it is refused as background and the class stays off the ground.
   const Channels g = yuvFromRgb(40, 140, 50);
   const ColorClass ball = test::makeClass("ball", ColorSpace::YUV, {{static_cast<uint8_t>(g[0] + 14), g[1], g[2]}},
                                           {{static_cast<uint8_t>(g[0] + 40), static_cast<uint8_t>(g[1] + 20),
@@ -257,11 +257,19 @@ TEST(ColorLearner, BlobUpdatesThatWouldOverlapTheGroundAreRefused) {
   EXPECT_EQ(c.max, ball.max);
   bool refused = false, measured = false;
   for (const auto& m : learner.lastMeasurements()) {
-    measured = measured || m.pixels_box.contains(cv::Point(200, 170));
-    refused = refused || m.rejected.find("ground") != std::string::npos;
+    if (!m.from_blob || !m.pixels_box.contains(cv::Point(200, 170))) continue;
+    measured = true;
+    refused = m.rejection == ColorLearner::Rejection::kBackground;
   }
   EXPECT_TRUE(measured) << "the ball's blob must have been measured";
   EXPECT_TRUE(refused);
+  // Without the rim the same class learns from the ball: the gate, not the blob path, refused.
+  ColorLearner clean({ball}, options);
+  SyntheticFrame plain = boxFrame(cv::Scalar(50, 140, 40));
+  plain.landmarks.lines.clear();
+  cv::circle(plain.image, cv::Point(200, 170), 6, bgrOfYuv(g[0] + 26, g[1] + 8, g[2] + 8), cv::FILLED);
+  EXPECT_TRUE(clean.update(plain.image, plain.landmarks, plain.objects, 0.0));
+  EXPECT_EQ(clean.classes()[0].source, "learned");
 }
 
 TEST(ColorLearner, RegionsAtTheHorizonAreNotObstacles) {
