@@ -28,7 +28,7 @@ namespace {
 // Segment + tracker on one frame, as bgr8 and as yuv422 (UYVY), and OpenCV's pipeline on it.
 struct FrameTimes {
   double bgr_ms = 0, uyvy_ms = 0, opencv_ms = 0;
-  size_t runs_bgr = 0, runs_uyvy = 0, regions_bgr = 0, regions_uyvy = 0;
+  size_t runs_bgr = 0, runs_uyvy = 0, regions_bgr = 0, regions_uyvy = 0, opencv_blobs = 0;
 };
 
 FrameTimes timeFrame(const cv::Mat& bgr, const std::vector<ColorClass>& classes) {
@@ -55,6 +55,7 @@ FrameTimes timeFrame(const cv::Mat& bgr, const std::vector<ColorClass>& classes)
     opencv.run(bgr, &opencv_blobs);
     bench::keep(opencv_blobs);
   }, 100, 10);
+  t.opencv_blobs = opencv_blobs.size();
   return t;
 }
 
@@ -80,11 +81,8 @@ bool realFrame(const std::string& folder, cv::Mat* frame, std::vector<ColorClass
     std::vector<CalibrationExample> examples;
     size_t boxes = 0;
     for (const std::string& path : imagesInFolder(folder)) {
-      CalibrationExample e{path, cv::imread(path, cv::IMREAD_COLOR), {}};
-      if (e.bgr.empty()) continue;
-      e.boxes = readYoloBoxes(yoloLabelPath(path), 0, e.bgr.size());
-      boxes += e.boxes.size();
-      examples.push_back(std::move(e));
+      examples.push_back(readYoloExample(path, 0));
+      boxes += examples.back().boxes.size();
     }
     if (boxes == 0) return false;
     *frame = examples.front().bgr;
@@ -107,21 +105,14 @@ int main(int argc, char** argv) {
 
   const SimFrame frame = benchmarkFrame(source_dir);
   const std::vector<ColorClass> classes = benchmarkClasses(source_dir);
-  const ColorTable table(classes);
-  const cv::Mat uyvy = bgrToUyvy(frame.image);
+  const FrameTimes clean = timeFrame(frame.image, classes);
+  const double tracker_ms = clean.bgr_ms, tracker_yuv422_ms = clean.uyvy_ms, opencv_ms = clean.opencv_ms;
 
   Segmenter segmenter;
   BlobTracker tracker;
   std::vector<Region> regions;
   std::vector<TrackedBlob> blobs;
   double stamp = 0;
-  auto track = [&](const cv::Mat& image, PixelFormat format) {
-    segmenter.segment(image, format, table, &regions);
-    tracker.update(regions, stamp += 1.0 / 30, &blobs);
-    bench::keep(blobs);
-  };
-  const double tracker_ms = bench::medianMs([&] { track(frame.image, PixelFormat::BGR8); });
-  const double tracker_yuv422_ms = bench::medianMs([&] { track(uyvy, PixelFormat::UYVY); });
 
   // The same loop while colour learning replaces the table: an updater thread on the other CPU
   // stores another table (ranges nudged) after every frame; the frame path takes a snapshot per
@@ -173,13 +164,6 @@ int main(int argc, char** argv) {
   updater.join();
   const double swaps_per_frame = static_cast<double>(swaps.load()) / timed_frames;
 
-  OpenCvPipeline opencv(classes);
-  std::vector<OpenCvBlob> opencv_blobs;
-  const double opencv_ms = bench::medianMs([&] {
-    opencv.run(frame.image, &opencv_blobs);
-    bench::keep(opencv_blobs);
-  }, 100, 10);
-
   cv::Mat copy(frame.image.size(), frame.image.type());
   const size_t bytes = frame.image.total() * frame.image.elemSize();
   const double memcpy_ms = bench::medianMs([&] {
@@ -198,13 +182,13 @@ int main(int argc, char** argv) {
   const double speedup = opencv_ms / tracker_ms;
   const double ratio_to_memcpy = tracker_ms / memcpy_ms;
   std::printf("rle_vision tracker benchmark: %dx%d bgr8, %zu classes, %zu blobs (config/scene_default.yaml, frame 0)\n",
-              frame.image.cols, frame.image.rows, classes.size(), regions.size());
+              frame.image.cols, frame.image.rows, classes.size(), clean.regions_bgr);
   std::printf("median of timed runs, one thread pinned to one CPU\n");
   std::printf("  %-44s %8.3f ms   (target <= 0.5)\n", "rle_vision tracker core, bgr8", tracker_ms);
   std::printf("  %-44s %8.3f ms   (CMVision on UYVY: ~0.43 ms, docs/DESIGN.md)\n", "rle_vision tracker core, yuv422 (UYVY)", tracker_yuv422_ms);
   std::printf("  %-44s %8.3f ms   (target <= 0.5; %.2f swaps per frame)\n", "rle_vision tracker core, bgr8, table swaps",
               tracker_with_updates_ms, swaps_per_frame);
-  std::printf("  %-44s %8.3f ms   (%zu blobs)\n", "OpenCV cvtColor + inRange + CC per class", opencv_ms, opencv_blobs.size());
+  std::printf("  %-44s %8.3f ms   (%zu blobs)\n", "OpenCV cvtColor + inRange + CC per class", opencv_ms, clean.opencv_blobs);
   std::printf("  %-44s %8.3f ms\n", "memcpy of the frame", memcpy_ms);
   std::printf("  %-44s %8.1f x    (target >= 10)\n", "speedup vs OpenCV", speedup);
   printFrame("noise sigma 25", noise25);

@@ -18,6 +18,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "harness.h"
+#include "opencv_pipeline.h"
 #include "rle_vision/camera_stream.h"
 #include "rle_vision/color_calibration.h"
 #include "rle_vision/color_config.h"
@@ -69,7 +70,7 @@ double msSince(std::chrono::steady_clock::time_point start) {
 // The methods on one frame.
 class BallMethods {
  public:
-  explicit BallMethods(const ColorClass& ball) : ball_(ball), table_({ball}) {}
+  explicit BallMethods(const ColorClass& ball) : table_({ball}), opencv_({ball}) {}
 
   void ours(const cv::Mat& bgr, const std::vector<cv::Rect>& balls, Score* s) {
     const auto start = std::chrono::steady_clock::now();
@@ -84,26 +85,21 @@ class BallMethods {
 
   void opencv(const cv::Mat& bgr, const std::vector<cv::Rect>& balls, Score* s) {
     const auto start = std::chrono::steady_clock::now();
-    cv::cvtColor(bgr, yuv_, cv::COLOR_BGR2YUV);
-    cv::inRange(yuv_, cv::Scalar(ball_.min[0], ball_.min[1], ball_.min[2]),
-                cv::Scalar(ball_.max[0], ball_.max[1], ball_.max[2]), mask_);
-    const int n = cv::connectedComponentsWithStats(mask_, labels_, stats_, centroids_, 8, CV_32S);
+    opencv_.run(bgr, &opencv_blobs_);
     const double ms = msSince(start);
     std::vector<cv::Point2d> blobs;
-    for (int i = 1; i < n; ++i) {
-      if (stats_.at<int>(i, cv::CC_STAT_AREA) >= static_cast<int>(kMinBlobArea)) {
-        blobs.emplace_back(centroids_.at<double>(i, 0), centroids_.at<double>(i, 1));
-      }
+    for (const OpenCvBlob& b : opencv_blobs_) {
+      if (b.area >= static_cast<int>(kMinBlobArea)) blobs.emplace_back(b.cx, b.cy);
     }
     score(blobs, balls, ms, s);
   }
 
  private:
-  ColorClass ball_;
   ColorTable table_;
   Segmenter segmenter_;
   std::vector<Region> regions_;
-  cv::Mat yuv_, mask_, labels_, stats_, centroids_;
+  OpenCvPipeline opencv_;  // cvtColor + inRange + connectedComponentsWithStats, 8-connected
+  std::vector<OpenCvBlob> opencv_blobs_;
 };
 
 struct FolderScores {
@@ -148,11 +144,7 @@ FolderScores evaluateFolder(const std::string& folder, int label_class, const Co
 
 CalibrationResult calibrate(const std::string& folder, int label_class) {
   std::vector<CalibrationExample> examples;
-  for (const std::string& path : imagesInFolder(folder)) {
-    CalibrationExample e{path, cv::imread(path, cv::IMREAD_COLOR), {}};
-    if (!e.bgr.empty()) e.boxes = readYoloBoxes(yoloLabelPath(path), label_class, e.bgr.size());
-    examples.push_back(std::move(e));
-  }
+  for (const std::string& path : imagesInFolder(folder)) examples.push_back(readYoloExample(path, label_class));
   if (examples.empty()) throw std::runtime_error(folder + ": no images to calibrate from");
   return calibrateColorClass(examples, "ball");
 }

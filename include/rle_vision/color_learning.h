@@ -32,6 +32,10 @@ struct ColorStats {
 // `large_object_px` pixels remain, else mean +- `small_object_margin`. False without pixels.
 bool colorStats(const std::vector<Channels>& pixels, ColorStats* stats, double outlier_distance = 40,
                 uint32_t large_object_px = 100, double small_object_margin = 15);
+// The same with a weight per pixel (nullptr: every pixel weighs 1), e.g. so that each of
+// several examples counts once however large; `stats->pixels` counts pixels, not weight.
+bool weightedColorStats(const std::vector<Channels>& pixels, const std::vector<double>* weights, ColorStats* stats,
+                        double outlier_distance = 40, uint32_t large_object_px = 100, double small_object_margin = 15);
 
 // The colour modes of a set of pixels (one space): from the densest colour, a mean shift
 // within `radius` on every channel, its members taken out, and again, at most `max_modes`
@@ -131,6 +135,7 @@ class ColorLearner {
   void measureBlob(const cv::Mat& bgr, const Region& region, const HorizonEstimate& horizon, Measurement* m);
   void blobPixels(const cv::Mat& bgr, const Region& region, int k, std::vector<Channels>* pixels) const;
   int nearestClass(const Measurement& m) const;
+  double distanceToClass(int k, const ColorStats& measured) const;
   void applyMatched(const std::vector<std::vector<ColorStats>>& matched, double stamp_s);
   Rejection apply(int k, const ColorStats& measured, double stamp_s, int* conflicting_class);
   bool driftBack(double stamp_s);

@@ -7,6 +7,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "rle_vision/color_calibration.h"
+
 namespace rle_vision {
 
 // The label file of an image: the same path with .txt for its extension.
@@ -17,6 +19,10 @@ std::string yoloLabelPath(const std::string& image_path);
 // no boxes (YOLO's convention for an image without objects). Throws ConfigError with the file
 // and line for a malformed line, an empty box or a box wholly outside the image.
 std::vector<cv::Rect> readYoloBoxes(const std::string& label_path, int label_class, const cv::Size& size);
+
+// An image and its boxes of `label_class` as a calibration example. Throws ConfigError for an
+// unreadable image or label file (readYoloBoxes).
+CalibrationExample readYoloExample(const std::string& image_path, int label_class);
 
 // The .jpg, .jpeg and .png files of a folder, sorted by name (empty when it cannot be read).
 std::vector<std::string> imagesInFolder(const std::string& folder);

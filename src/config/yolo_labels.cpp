@@ -7,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include "rle_vision/config_error.h"
 
 namespace rle_vision {
@@ -44,6 +46,15 @@ std::vector<cv::Rect> readYoloBoxes(const std::string& label_path, int label_cla
     boxes.push_back(box);
   }
   return boxes;
+}
+
+CalibrationExample readYoloExample(const std::string& image_path, int label_class) {
+  CalibrationExample e;
+  e.name = image_path;
+  e.bgr = cv::imread(image_path, cv::IMREAD_COLOR);
+  if (e.bgr.empty()) throw ConfigError(image_path + ": cannot read the image (missing, unreadable or not an image)");
+  e.boxes = readYoloBoxes(yoloLabelPath(image_path), label_class, e.bgr.size());
+  return e;
 }
 
 std::vector<std::string> imagesInFolder(const std::string& folder) {

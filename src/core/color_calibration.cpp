@@ -126,38 +126,12 @@ WeightedPixels agreeingExamples(const std::vector<std::vector<Channels>>& object
   return out;
 }
 
-// colorStats with a weight per pixel (every example counting once).
+// The paper's statistics with every example counting once.
 ColorStats weightedStats(const WeightedPixels& w, const CalibrationOptions& o) {
-  double mean[3] = {0, 0, 0}, total = 0;
-  for (size_t i = 0; i < w.pixels.size(); ++i) {
-    for (int ch = 0; ch < 3; ++ch) mean[ch] += w.weights[i] * w.pixels[i][ch];
-    total += w.weights[i];
-  }
-  for (double& m : mean) m /= total;
   ColorStats s;
-  double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0}, kept_weight = 0;
-  for (size_t i = 0; i < w.pixels.size(); ++i) {
-    const Channels& p = w.pixels[i];
-    bool inlier = true;
-    for (int ch = 0; ch < 3; ++ch) inlier = inlier && std::fabs(p[ch] - mean[ch]) <= o.outlier_distance;
-    if (!inlier) continue;
-    ++s.pixels;
-    kept_weight += w.weights[i];
-    for (int ch = 0; ch < 3; ++ch) {
-      sum[ch] += w.weights[i] * p[ch];
-      sum2[ch] += w.weights[i] * p[ch] * p[ch];
-    }
-  }
-  if (kept_weight <= 0) {
+  if (!weightedColorStats(w.pixels, &w.weights, &s, o.outlier_distance, o.large_object_px, o.small_object_margin)) {
     throw std::invalid_argument("the objects' pixels spread more than the outlier distance around their mean: "
                                 "give boxes of one colour");
-  }
-  for (int ch = 0; ch < 3; ++ch) {
-    s.mean[ch] = sum[ch] / kept_weight;
-    s.sigma[ch] = std::sqrt(std::max(0.0, sum2[ch] / kept_weight - s.mean[ch] * s.mean[ch]));
-    const double margin = s.pixels > o.large_object_px ? 3 * s.sigma[ch] : o.small_object_margin;
-    s.lo[ch] = saturateToByte(static_cast<int>(std::floor(s.mean[ch] - margin)));
-    s.hi[ch] = saturateToByte(static_cast<int>(std::ceil(s.mean[ch] + margin)));
   }
   return s;
 }

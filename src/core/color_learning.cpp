@@ -64,30 +64,39 @@ std::vector<cv::Point2d> regionFromLines(const std::vector<const DetectedLine*>&
 
 bool colorStats(const std::vector<Channels>& pixels, ColorStats* s, double outlier_distance,
                 uint32_t large_object_px, double small_object_margin) {
+  return weightedColorStats(pixels, nullptr, s, outlier_distance, large_object_px, small_object_margin);
+}
+
+bool weightedColorStats(const std::vector<Channels>& pixels, const std::vector<double>* weights, ColorStats* s,
+                        double outlier_distance, uint32_t large_object_px, double small_object_margin) {
   if (pixels.empty()) return false;
-  double mean[3] = {0, 0, 0};
-  for (const Channels& p : pixels) {
-    for (int ch = 0; ch < 3; ++ch) mean[ch] += p[ch];
+  auto weight = [weights](size_t i) { return weights ? (*weights)[i] : 1.0; };
+  double mean[3] = {0, 0, 0}, total = 0;
+  for (size_t i = 0; i < pixels.size(); ++i) {
+    for (int ch = 0; ch < 3; ++ch) mean[ch] += weight(i) * pixels[i][ch];
+    total += weight(i);
   }
-  for (double& m : mean) m /= static_cast<double>(pixels.size());
+  for (double& m : mean) m /= total;
   // Outliers (near edges, not the object's colour): more than outlier_distance from the mean.
-  double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+  double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0}, kept_weight = 0;
   uint32_t kept = 0;
-  for (const Channels& p : pixels) {
+  for (size_t i = 0; i < pixels.size(); ++i) {
+    const Channels& p = pixels[i];
     bool inlier = true;
     for (int ch = 0; ch < 3; ++ch) inlier = inlier && std::fabs(p[ch] - mean[ch]) <= outlier_distance;
     if (!inlier) continue;
     ++kept;
+    kept_weight += weight(i);
     for (int ch = 0; ch < 3; ++ch) {
-      sum[ch] += p[ch];
-      sum2[ch] += static_cast<double>(p[ch]) * p[ch];
+      sum[ch] += weight(i) * p[ch];
+      sum2[ch] += weight(i) * p[ch] * p[ch];
     }
   }
-  if (kept == 0) return false;
+  if (kept == 0 || !(kept_weight > 0)) return false;
   s->pixels = kept;
   for (int ch = 0; ch < 3; ++ch) {
-    s->mean[ch] = sum[ch] / kept;
-    s->sigma[ch] = std::sqrt(std::max(0.0, sum2[ch] / kept - s->mean[ch] * s->mean[ch]));
+    s->mean[ch] = sum[ch] / kept_weight;
+    s->sigma[ch] = std::sqrt(std::max(0.0, sum2[ch] / kept_weight - s->mean[ch] * s->mean[ch]));
     // The sigma of a small object is not reliable: a fixed margin instead.
     const double margin = kept > large_object_px ? 3 * s->sigma[ch] : small_object_margin;
     s->lo[ch] = saturateToByte(static_cast<int>(std::floor(s->mean[ch] - margin)));
@@ -432,20 +441,25 @@ void ColorLearner::measureMode(const cv::Mat& bgr, const RegionPixels& pixels, c
   m->matched_class = k;
 }
 
+double ColorLearner::distanceToClass(int k, const ColorStats& measured) const {
+  // From the centre of the class's current range to the measured mean.
+  double d2 = 0;
+  for (int ch = 0; ch < 3; ++ch) {
+    const double centre = 0.5 * (state_[k].lo[ch] + state_[k].hi[ch]);
+    d2 += (measured.mean[ch] - centre) * (measured.mean[ch] - centre);
+  }
+  return std::sqrt(d2);
+}
+
 int ColorLearner::nearestClass(const Measurement& m) const {
   // The nearest class (centre of its current range) within the gate.
   double best = options_.match_gate;
   int nearest = -1;
   for (size_t k = 0; k < configured_.size(); ++k) {
     if (wrapped(configured_[k])) continue;  // wrapped (hue) ranges are not learned
-    const ColorStats& st = m.stats[static_cast<int>(configured_[k].space)];
-    double d2 = 0;
-    for (int ch = 0; ch < 3; ++ch) {
-      const double centre = 0.5 * (state_[k].lo[ch] + state_[k].hi[ch]);
-      d2 += (st.mean[ch] - centre) * (st.mean[ch] - centre);
-    }
-    if (std::sqrt(d2) <= best) {
-      best = std::sqrt(d2);
+    const double d = distanceToClass(static_cast<int>(k), m.stats[static_cast<int>(configured_[k].space)]);
+    if (d <= best) {
+      best = d;
       nearest = static_cast<int>(k);
     }
   }
@@ -588,12 +602,7 @@ void ColorLearner::measureBlob(const cv::Mat& bgr, const Region& region, const H
     if (stats.sigma[ch] > options_.max_sigma) return reject(m, Rejection::kMixedColours);
   }
   // Still its own class's colour (a blob is in range; with the ring it may have moved).
-  double d2 = 0;
-  for (int ch = 0; ch < 3; ++ch) {
-    const double centre = 0.5 * (state_[k].lo[ch] + state_[k].hi[ch]);
-    d2 += (stats.mean[ch] - centre) * (stats.mean[ch] - centre);
-  }
-  if (std::sqrt(d2) > options_.match_gate) return reject(m, Rejection::kNoClass);
+  if (distanceToClass(k, stats) > options_.match_gate) return reject(m, Rejection::kNoClass);
   if (isBackground(configured_[k].space, stats)) return reject(m, Rejection::kBackground);
   m->matched_class = k;
 }

@@ -132,11 +132,11 @@ bool isDirectory(const std::string& path) {
 }
 
 CalibrationExample readExample(const std::string& path, std::vector<cv::Rect> boxes, int label_class) {
+  if (label_class >= 0) return readYoloExample(path, label_class);
   CalibrationExample e;
   e.name = path;
   e.bgr = cv::imread(path, cv::IMREAD_COLOR);
   if (e.bgr.empty()) throw std::invalid_argument(path + ": cannot read the image (missing, unreadable or not an image)");
-  if (label_class >= 0) boxes = readYoloBoxes(yoloLabelPath(path), label_class, e.bgr.size());
   e.boxes = std::move(boxes);
   return e;
 }
