@@ -7,7 +7,7 @@ packages=(
   build-essential cmake catkin ros-core-dev
   libroscpp-dev libnodelet-dev libnodeletlib-dev libnodeletlib-tools pluginlib-dev
   libcv-bridge-dev libimage-transport-dev libmessage-filters-dev libtf2-ros-dev libtf2-eigen-dev libtf2-geometry-msgs-dev libtf2-dev
-  libopencv-dev libopencv-contrib-dev libeigen3-dev libyaml-cpp-dev
+  libopencv-dev libopencv-contrib-dev libeigen3-dev libyaml-cpp-dev python3-opencv python3-numpy
   ros-sensor-msgs ros-geometry-msgs ros-visualization-msgs ros-std-msgs
   python3-sensor-msgs python3-geometry-msgs python3-std-msgs python3-visualization-msgs
   python3-rospy python3-yaml python3-rostest python3-nose librostest-dev python3-roslaunch python3-rostopic python3-rosnode

@@ -43,6 +43,7 @@
 #include "rle_vision/attitude_filter.h"
 #include "rle_vision/color_config.h"
 #include "rle_vision/ground_projection.h"
+#include "rle_vision/wait_watchdog.h"
 
 namespace rle_vision {
 
@@ -61,6 +62,7 @@ class GroundProjectorNodelet : public nodelet::Nodelet {
   void blobsWithTfCb(const BlobArrayConstPtr& msg);
   void blobsWithHorizonCb(const BlobArrayConstPtr& msg);
   void placePendingBlobs();
+  void warnIfStuck();
   void blobsDroppedCb(const BlobArrayConstPtr& msg, tf2_ros::filter_failure_reasons::FilterFailureReason reason);
   void broadcastPose(const std_msgs::Header& header, double roll, double pitch);
   void place(const BlobArray& msg, const Eigen::Isometry3d& base_from_optical);
@@ -71,6 +73,11 @@ class GroundProjectorNodelet : public nodelet::Nodelet {
   std::string base_frame_, camera_frame_;
   bool publish_optical_tf_ = true;
   int queue_size_ = 30;  // blob messages waiting for their camera pose
+  // Said within a second when no blobs can be placed (tf mode), whatever the queue's length.
+  WaitWatchdog pose_wait_{1.0};
+  ros::WallTimer stuck_timer_;
+  std::mutex blob_frame_mutex_;
+  std::string blob_frame_;  // of the newest blobs, for the warning
   std::map<std::string, Channels> display_rgb_;  // marker colours by class name
 
   // Dynamic parameters: copied under the mutex, used without it.
@@ -132,6 +139,12 @@ void GroundProjectorNodelet::onInit() {
                                                                       static_cast<uint32_t>(queue_size_), nh);
     tf_filter_->connectInput(sub_blobs_);
     tf_filter_->registerCallback([this](const BlobArrayConstPtr& msg) { blobsWithTfCb(msg); });
+    sub_blobs_.registerCallback([this](const BlobArrayConstPtr& msg) {
+      pose_wait_.received(ros::WallTime::now().toSec());
+      std::lock_guard<std::mutex> lock(blob_frame_mutex_);
+      blob_frame_ = msg->header.frame_id;
+    });
+    stuck_timer_ = nh.createWallTimer(ros::WallDuration(0.25), [this](const ros::WallTimerEvent&) { warnIfStuck(); });
     tf_filter_->registerFailureCallback(
         [this](const BlobArrayConstPtr& msg, tf2_ros::filter_failure_reasons::FilterFailureReason reason) {
           blobsDroppedCb(msg, reason);
@@ -187,6 +200,7 @@ void GroundProjectorNodelet::connectCb() {
   if (!want_blobs && blobs_subscribed_) {
     sub_blobs_.unsubscribe();
     blobs_subscribed_ = false;
+    pose_wait_.handled();  // nobody wants them placed: not stuck
   } else if (want_blobs && !blobs_subscribed_) {
     sub_blobs_.subscribe(getNodeHandle(), "blobs", 10);
     blobs_subscribed_ = true;
@@ -308,7 +322,21 @@ void GroundProjectorNodelet::blobsDroppedCb(const BlobArrayConstPtr& msg,
                         msg->header.stamp.toSec(), why, msg->header.frame_id.c_str(), base_frame_.c_str());
 }
 
+void GroundProjectorNodelet::warnIfStuck() {
+  const double waited_s = pose_wait_.overdueS(ros::WallTime::now().toSec());
+  if (waited_s <= 0) return;
+  std::string frame;
+  {
+    std::lock_guard<std::mutex> lock(blob_frame_mutex_);
+    frame = blob_frame_;
+  }
+  NODELET_WARN_THROTTLE(5.0, "no transform from '%s' to '%s': blobs have waited %.1f s for their camera pose. Is "
+                        "the robot's tf running (robot_state_publisher), or use attitude_source: horizon.",
+                        frame.c_str(), base_frame_.c_str(), waited_s);
+}
+
 void GroundProjectorNodelet::blobsWithTfCb(const BlobArrayConstPtr& msg) {
+  pose_wait_.handled();
   Eigen::Isometry3d base_from_optical;
   try {
     base_from_optical = tf2::transformToEigen(

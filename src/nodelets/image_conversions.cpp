@@ -7,7 +7,7 @@ namespace rle_vision {
 bool viewImage(const sensor_msgs::Image& msg, PixelFormat* format, cv::Mat* mat, std::string* error) {
   if (!pixelFormatFromEncoding(msg.encoding, format)) {
     *error = "unsupported image encoding '" + msg.encoding + "' (supported: " + supportedEncodings() +
-             "); convert it first, e.g. with image_proc for Bayer images";
+             "); Bayer cameras: run the pipeline with debayer:=true (pipeline.launch, play.launch)";
     return false;
   }
   // Size first: a huge or empty header must not lead to a huge allocation or a wrapped product.

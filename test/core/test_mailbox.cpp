@@ -1,6 +1,6 @@
 // The landmark node's one-slot mailbox: the consumer sees only ever newer items, nothing is
 // lost without being counted as dropped, close() wakes a waiting consumer. Also built under
-// ThreadSanitizer (test_concurrency_tsan).
+// ThreadSanitizer (test_concurrency_tsan). Also the wait watchdog that says when inputs are stuck.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -8,6 +8,7 @@
 
 #include "rle_vision/latest_mailbox.h"
 #include "rle_vision/startup_wait.h"
+#include "rle_vision/wait_watchdog.h"
 
 namespace rle_vision {
 namespace {
@@ -69,6 +70,27 @@ TEST(StartupWait, WaitsFromTheFirstCallForItsDuration) {
   EXPECT_TRUE(wait.waiting(100.9));
   EXPECT_FALSE(wait.waiting(101.0));
   EXPECT_DOUBLE_EQ(wait.remaining(102.0), 0.0);
+}
+
+}  // namespace
+}  // namespace rle_vision
+
+namespace rle_vision {
+namespace {
+
+TEST(WaitWatchdog, OverdueFromTheOldestUnhandledInputUntilOneIsHandled) {
+  WaitWatchdog watchdog(1.0);
+  EXPECT_EQ(watchdog.overdueS(5.0), 0.0);  // nothing waits
+  watchdog.received(10.0);
+  watchdog.received(10.5);  // a later input does not restart the wait
+  EXPECT_EQ(watchdog.overdueS(10.9), 0.0);
+  EXPECT_DOUBLE_EQ(watchdog.overdueS(11.0), 1.0);
+  EXPECT_DOUBLE_EQ(watchdog.overdueS(12.5), 2.5);
+  watchdog.handled();
+  EXPECT_EQ(watchdog.overdueS(13.0), 0.0);
+  watchdog.received(13.0);
+  EXPECT_EQ(watchdog.overdueS(13.5), 0.0);
+  EXPECT_DOUBLE_EQ(watchdog.overdueS(14.25), 1.25);
 }
 
 }  // namespace
