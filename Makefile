@@ -5,7 +5,7 @@ ARGS ?=
 JOBS ?= 2
 export JOBS
 
-.PHONY: all deps build demo test test-asan test-core test-install fuzz bench eval bench-latency screenshot clean
+.PHONY: all deps build demo test test-readme test-asan test-core test-install fuzz bench eval bench-latency screenshot clean
 
 all: build
 
@@ -20,6 +20,9 @@ demo: build
 
 test: build
 	@scripts/run_tests.sh
+
+test-readme: build
+	@scripts/test_readme.sh
 
 test-asan: deps
 	@scripts/test_asan.sh

@@ -60,10 +60,11 @@ inline std::string todayUtc() {
   return date;
 }
 
-// Writes a flat JSON object of numbers.
+// Writes a flat JSON object of numbers, after the machine and the date it was measured on
+// (scripts/readme_figures.py prints both under the README's tables).
 inline void writeJson(const std::string& path, const std::vector<std::pair<std::string, double>>& values) {
   std::ofstream out(path);
-  out << "{\n";
+  out << "{\n  \"machine\": \"" << machineName() << "\",\n  \"date\": \"" << todayUtc() << "\",\n";
   for (size_t i = 0; i < values.size(); ++i) {
     char number[64];
     std::snprintf(number, sizeof(number), "%.6g", values[i].second);

@@ -2,9 +2,10 @@
 # Latency under load: runs the demo pipeline (simulator -> tracker, edge detector, landmark,
 # ground projector, monitor, all at 30 Hz) for BENCH_SECONDS (default 60) at 640x480 and at
 # 1280x720, and writes tracker latency, drops, landmark skips and CPU per node to
-# bench/results/latency.json. Both sizes run twice: as launched by default (the tracker's frame
-# thread at SCHED_FIFO priority 50, where the system allows it) and with realtime_priority:=0
-# (normal priority, as on a system that does not allow it).
+# bench/results/latency.json. Both sizes run at both priorities, each twice (the spread is in
+# the file): as launched by default (the tracker's frame thread at SCHED_FIFO priority 50,
+# where the system allows it) and with realtime_priority:=0 (normal priority, what a user
+# without CAP_SYS_NICE or an rtprio limit gets). BENCH_REPEATS (2) sets the repeats.
 set -euo pipefail
 source "$(dirname "$0")/env.sh"
 source_workspace
@@ -12,10 +13,15 @@ seconds="${BENCH_SECONDS:-60}"
 out="$ROOT/bench/results/latency.json"
 mkdir -p "$ROOT/bench/results"
 rm -f "$out"
-for run in 640x480 1280x720 640x480@normal 1280x720@normal; do
-  size=${run%@*}
+runs=()
+for config in 640x480 640x480@normal 1280x720 1280x720@normal; do
+  for repeat in $(seq 1 "${BENCH_REPEATS:-2}"); do runs+=("$config#$repeat"); done
+done
+for run in "${runs[@]}"; do
+  config=${run%#*}
+  size=${config%@*}
   priority=50
-  [[ "$run" == *@normal ]] && priority=0
+  [[ "$config" == *@normal ]] && priority=0
   width=${size%x*}
   height=${size#*x}
   scene="$WS/bench_scene_$size.yaml"

@@ -11,6 +11,7 @@ packages=(
   ros-sensor-msgs ros-geometry-msgs ros-visualization-msgs ros-std-msgs
   python3-sensor-msgs python3-geometry-msgs python3-std-msgs python3-visualization-msgs
   python3-rospy python3-yaml python3-rostest python3-nose librostest-dev python3-roslaunch python3-rostopic python3-rosnode
+  rosbash python3-roslib
   librosbag-dev python3-rosbag python3-std-srvs ros-message-generation ros-message-runtime
   libdiagnostic-updater-dev python3-diagnostic-msgs libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libbenchmark-dev libgtest-dev

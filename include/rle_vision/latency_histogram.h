@@ -27,6 +27,14 @@ class LatencyHistogram {
   }
 
   uint64_t count() const { return count_; }
+  // Samples above `ms` (to the bin: exact for multiples of kBinMs). Two readings of a running
+  // histogram give the count over the time between them, so a window excludes the start-up.
+  uint64_t countAbove(double ms) const {
+    const int first = std::min(kBins, std::max(0, static_cast<int>(std::lround(ms / kBinMs))));
+    uint64_t above = 0;
+    for (int b = first; b < kBins; ++b) above += bins_[b];
+    return above;
+  }
   double maxMs() const { return max_ms_; }
 
   // The upper edge of the bin holding the p-th percentile (0 < p <= 100), so the value

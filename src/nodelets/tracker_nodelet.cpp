@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -27,6 +28,7 @@
 #include "color_range_conversions.h"
 #include "image_conversions.h"
 #include "error_throttle.h"
+#include "inline_callback_queue.h"
 #include "processing_stats.h"
 #include "startup_params.h"
 #include "rle_vision/BlobArray.h"
@@ -54,10 +56,13 @@ class TrackerNodelet : public nodelet::Nodelet {
   void publishActiveRanges(const ColorTable& table, const ros::Time& stamp);
   void reportDiagnostics(diagnostic_updater::DiagnosticStatusWrapper& status);
 
-  // Images arrive on a queue served by a thread of the tracker's own, so a frame never waits
-  // behind another nodelet's callback on the manager's shared worker threads. Declared before
-  // the subscriber so that it outlives it.
+  // With SCHED_FIFO, images arrive on a queue served by a thread of the tracker's own, so a
+  // frame never waits behind another nodelet's callback on the manager's shared worker threads.
+  // At normal priority they are processed in the thread that delivers them (inline_queue_), the
+  // frame thread serving only what cannot run there. Declared before the subscriber so that
+  // they outlive it.
   ros::CallbackQueue frame_queue_;
+  InlineCallbackQueue inline_queue_{&frame_queue_};
   std::atomic<bool> frame_thread_running_{true};
   std::thread frame_thread_;
   std::shared_ptr<image_transport::ImageTransport> it_;
@@ -107,28 +112,39 @@ TrackerNodelet::~TrackerNodelet() {
 void TrackerNodelet::onInit() {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
-  ros::NodeHandle frame_nh(nh);
-  frame_nh.setCallbackQueue(&frame_queue_);
-  it_ = std::make_shared<image_transport::ImageTransport>(frame_nh);
   int realtime_priority = 0;
   pnh.param("realtime_priority", realtime_priority, 0);
-  frame_thread_ = std::thread([this, realtime_priority] {
+  auto realtime_promise = std::make_shared<std::promise<bool>>();
+  std::future<bool> realtime = realtime_promise->get_future();
+  frame_thread_ = std::thread([this, realtime_priority, realtime_promise] {
+    bool fifo = false;
     if (realtime_priority > 0) {
       // SCHED_FIFO needs CAP_SYS_NICE or an rtprio limit (/etc/security/limits.conf).
       sched_param param{};
       param.sched_priority = std::min(realtime_priority, sched_get_priority_max(SCHED_FIFO));
       const int error = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);
-      if (error != 0) {
+      fifo = error == 0;
+      if (!fifo) {
         // Informational: most desktop users lack the permission and the tracker still works.
-        NODELET_INFO("tracker frame thread runs at normal priority: SCHED_FIFO priority %d is not allowed (%s). "
-                     "For the lowest latency allow it with an rtprio limit in /etc/security/limits.conf; "
-                     "~realtime_priority 0 silences this", param.sched_priority, strerror(error));
+        NODELET_INFO("tracker frames run at normal priority, in the thread that delivers them: SCHED_FIFO "
+                     "priority %d is not allowed (%s). For the lowest latency allow it with an rtprio limit in "
+                     "/etc/security/limits.conf; ~realtime_priority 0 silences this",
+                     param.sched_priority, strerror(error));
       } else {
         NODELET_INFO("tracker frame thread runs at SCHED_FIFO priority %d", param.sched_priority);
       }
     }
+    realtime_promise->set_value(fifo);
     while (frame_thread_running_) frame_queue_.callAvailable(ros::WallDuration(0.1));
   });
+  ros::NodeHandle frame_nh(nh);
+  if (realtime.get()) {
+    frame_nh.setCallbackQueue(&frame_queue_);
+  } else {
+    frame_nh.setCallbackQueue(&inline_queue_);
+    if (realtime_priority <= 0) NODELET_INFO("tracker frames run at normal priority, in the thread that delivers them");
+  }
+  it_ = std::make_shared<image_transport::ImageTransport>(frame_nh);
   pnh.param("queue_size", queue_size_, 1);
   queue_size_ = std::max(1, queue_size_);
   pnh.param("publish_cmvision_blobs", publish_cmvision_blobs_, false);
@@ -300,6 +316,11 @@ void TrackerNodelet::reportDiagnostics(diagnostic_updater::DiagnosticStatusWrapp
     status.add("latency image stamp to blobs p50 (ms)", latency_.percentileMs(50));
     status.add("latency image stamp to blobs p99 (ms)", latency_.percentileMs(99));
     status.add("latency image stamp to blobs max (ms)", latency_.maxMs());
+    // Counts, not percentiles: two readings give a window's share over each bound (make
+    // bench-latency reads them so that start-up does not count).
+    for (const char* ms : {"0.5", "1", "1.5", "2", "3", "5"}) {
+      status.add(std::string("latency frames over ") + ms + " ms (since start)", latency_.countAbove(std::stod(ms)));
+    }
   }
   std::lock_guard<std::mutex> lock(table_info_mutex_);
   status.add("colour classes", table_.load()->size());

@@ -6,6 +6,7 @@
 //   rle_vision_detect --print-params
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -31,7 +32,7 @@ const char* kUsage =
     "       rle_vision_detect --print-params\n"
     "  --colors FILE    colour classes: colors.yaml or CMVision colors.txt (default: the package's config/colors.yaml)\n"
     "  --params FILE    landmark parameters (default: their defaults; see --print-params)\n"
-    "  --annotate DIR   also write DIR/<image name>.png with blobs, lines and the horizon drawn\n"
+    "  --annotate DIR   also write DIR/<image name>.png with blobs, lines and the horizon drawn (DIR is made)\n"
     "  --sequence       the images, in the order given, are one camera stream at --fps (default 30):\n"
     "                   blobs are tracked across them and colour ranges learned on one frame are used on\n"
     "                   the next (parameters learning, learning_*); each line also gives the ranges in use\n"
@@ -215,6 +216,13 @@ int main(int argc, char** argv) {
     return 0;
   }
   std::unique_ptr<ImageDetector> detector;
+  std::error_code folder_error;
+  if (!args.annotate_dir.empty() && !std::filesystem::is_directory(args.annotate_dir) &&
+      !std::filesystem::create_directories(args.annotate_dir, folder_error)) {
+    std::cerr << "rle_vision_detect: cannot create the --annotate folder " << args.annotate_dir << ": "
+              << folder_error.message() << "\n";
+    return 2;
+  }
   try {
     if (args.colors_file.empty()) {
       throw ConfigError("config/colors.yaml not found (installed share/rle_vision, the source tree or "

@@ -54,6 +54,13 @@ TEST(DetectCli, JsonPerImageAndErrorsForUnreadableFiles) {
   EXPECT_NE(second.find("\"error\":"), std::string::npos) << second;
   EXPECT_NE(third.find("\"file\":\"/nonexistent.png\",\"error\":"), std::string::npos) << third;
   EXPECT_FALSE(cv::imread(dir + "/rle_vision_frame.png").empty());  // the annotated overlay
+  // A folder that does not exist yet is made; one that cannot be (under a file) exits 2.
+  const std::string made = dir + "/rle_vision_annotated/new";
+  run(std::string(RLE_VISION_DETECT) + " --annotate " + made + " " + good + " > /dev/null", &status);
+  EXPECT_EQ(status, 0);
+  EXPECT_FALSE(cv::imread(made + "/rle_vision_frame.png").empty());
+  run(std::string(RLE_VISION_DETECT) + " --annotate " + bad + "/sub " + good + " > /dev/null 2>&1", &status);
+  EXPECT_EQ(status, 2);
   // Bad options fail at once with a usage message.
   run(std::string(RLE_VISION_DETECT) + " --colors /nonexistent.yaml " + good + " 2>/dev/null", &status);
   EXPECT_EQ(status, 2);

@@ -23,6 +23,22 @@ TEST(LatencyHistogram, PercentilesOfKnownSamples) {
   EXPECT_DOUBLE_EQ(h.maxMs(), 1.0);
 }
 
+TEST(LatencyHistogram, CountsAboveABoundGiveAWindowsShare) {
+  LatencyHistogram h;
+  for (int i = 0; i < 50; ++i) h.add(0.4);  // start-up: 10 slow frames among 50
+  for (int i = 0; i < 10; ++i) h.add(7.0);
+  const uint64_t all_before = h.count(), over_before = h.countAbove(2.0);
+  EXPECT_EQ(over_before, 10u);
+  EXPECT_EQ(h.countAbove(0.4), 60u);  // a bound counts its own bin
+  EXPECT_EQ(h.countAbove(0.41), 10u);
+  for (int i = 0; i < 995; ++i) h.add(0.8);  // the window: 5 of 1000 over 2 ms
+  for (int i = 0; i < 5; ++i) h.add(2.5);
+  EXPECT_EQ(h.count() - all_before, 1000u);
+  EXPECT_EQ(h.countAbove(2.0) - over_before, 5u);
+  EXPECT_EQ(h.countAbove(500.0), 0u);  // beyond the range: the last bin only
+  EXPECT_EQ(h.countAbove(-1.0), h.count());
+}
+
 TEST(LatencyHistogram, OutliersBeyondTheRangeKeepTheirMaximum) {
   LatencyHistogram h;
   for (int i = 0; i < 98; ++i) h.add(0.25);

@@ -1,0 +1,195 @@
+#!/usr/bin/env python3
+"""The README's tables of measured figures, written from the files the benchmarks and the
+evaluations write (bench/results/*.json, each with its machine and date), so that a figure
+cannot drift from its run. A table sits between `<!-- figures: NAME -->` and
+`<!-- /figures -->`; NAME picks the writer below.
+
+  readme_figures.py --write   rewrite the tables in README.md from bench/results/
+  readme_figures.py --check   exit 1, naming the tables that differ (make test runs this)
+
+After `make bench`, `make eval` or `make bench-latency`, run --write and commit the JSON files
+with the README."""
+import argparse
+import json
+import os
+import re
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+RESULTS = os.path.join(ROOT, 'bench', 'results')
+REGION = re.compile(r'(<!-- figures: (\w+) -->\n)(.*?)(<!-- /figures -->)', re.S)
+
+
+def load(name):
+    with open(os.path.join(RESULTS, name + '.json')) as f:
+        return json.load(f)
+
+
+def ms(value, digits=2):
+    return '%.*f ms' % (digits, value)
+
+
+def provenance(command, name, data):
+    return '(`%s` on %s, %s: `bench/results/%s.json`)' % (command, data.get('date', '?'), data.get('machine', '?'), name)
+
+
+def table(header, rows):
+    lines = ['| ' + ' | '.join(header) + ' |', '|' + '---|' * len(header)]
+    lines += ['| ' + ' | '.join(str(c) for c in row) + ' |' for row in rows]
+    return '\n'.join(lines)
+
+
+def tracker():
+    d = load('tracker')
+    rows = [
+        ['tracker core, bgr8 (classify + RLE + regions + tracking)', ms(d['tracker_ms'], 3), '≤ 0.5 ms'],
+        ['tracker core, yuv422 (UYVY)', ms(d['tracker_yuv422_ms'], 3), 'faster than CMVision (~0.43 ms here, docs/DESIGN.md)'],
+        ['tracker core, bgr8, a new colour table swapped in every frame (built on the other CPU)',
+         '%s (%.2f swaps per frame)' % (ms(d['tracker_ms_with_updates'], 3), d['table_swaps_per_frame']), '≤ 0.5 ms'],
+        ['OpenCV `cvtColor` + `inRange` + `connectedComponentsWithStats` per class', ms(d['opencv_ms'], 1), ''],
+        ['speedup vs OpenCV', '%.0fx' % d['speedup_vs_opencv'], '≥ 10x'],
+        ['`memcpy` of the frame', ms(d['memcpy_ms'], 3), ''],
+        ['tracker / memcpy', '%.0fx' % d['ratio_to_memcpy'], '≤ 25x'],
+    ]
+    return table(['', 'measured', 'target'], rows) + '\n\n' + provenance('make bench', 'tracker', d)
+
+
+def tracker_noise():
+    d = load('tracker')
+    rows = [['noise σ = 25', '**%s**' % ms(d['tracker_noise25_ms'], 3), ms(d['tracker_noise25_yuv422_ms'], 3),
+             ms(d['opencv_noise25_ms']), 'bgr8 ≤ 0.30 ms'],
+            ['noise σ = 60', ms(d['tracker_noise60_ms']), ms(d['tracker_noise60_yuv422_ms']), ms(d['opencv_noise60_ms']), '']]
+    if d.get('tracker_real_ms', 0) > 0:
+        rows.append(['608x800 real frame', ms(d['tracker_real_ms'], 3), ms(d['tracker_real_yuv422_ms'], 3),
+                     ms(d['opencv_real_ms']), ''])
+    return (table(['frame', 'bgr8', 'yuv422 (UYVY)', 'OpenCV pipeline', 'target'], rows) + '\n\n' +
+            provenance('make bench', 'tracker', d))
+
+
+def landmark():
+    d = load('landmark')
+    x = lambda ours, theirs: theirs / ours  # noqa: E731
+    met = lambda ok: 'met' if ok else '**not met**'  # noqa: E731
+    rows = [
+        ['our 5x5 Sobel, 3 channels, max magnitude', ms(d['sobel_ms']), 'faster than `cv::Sobel`'],
+        ['`cv::Sobel` ksize 5, x and y derivatives only', '%s (ours %.1fx faster)' % (
+            ms(d['opencv_sobel_derivatives_only_ms']), x(d['sobel_ms'], d['opencv_sobel_derivatives_only_ms'])), ''],
+        ['`cv::Sobel` + float magnitude + max over channels (the same job, buffers reused)', '%s (ours %.1fx faster)' % (
+            ms(d['opencv_sobel_ms']), x(d['sobel_ms'], d['opencv_sobel_ms'])), ''],
+        ['landmark total: Sobel + RLE Hough + horizon (region search and edge refinement)', ms(d['landmark_total_ms']),
+         '≤ 3 ms: ' + met(d['landmark_total_ms'] <= 3.0)],
+        ['`cvtColor` + `cv::ximgproc::FastLineDetector` (defaults) on the same frame', ms(d['fld_ms']), ''],
+        ['`cvtColor` + `cv::createLineSegmentDetector` (LSD, refine standard)', ms(d['lsd_ms'], 1), ''],
+        ['RLE Hough + horizon on the edge image (lines-only horizon)', ms(d['hough_ms']), ''],
+        ['… of which the RLE into edge objects (thinning, runs, union-find)', ms(d['edge_objects_ms']), ''],
+        ['… of which the Hough on the edge objects (sampling, votes, peaks, refits)', ms(d['hough_only_ms']), ''],
+        ['`cv::HoughLinesP` on the same edge image', '%s (ours %.1fx; the Hough alone %.1fx)' % (
+            ms(d['opencv_houghp_ms']), d['speedup_vs_houghp'], d['speedup_vs_houghp_hough_only']), ''],
+        ['line recall / precision, ours (2°, 2 px at the true segment)', '%.2f / %.2f' % (d['recall'], d['precision']),
+         'recall ≥ 0.89 at precision ≥ 0.95: ' + met(d['recall'] >= 0.89 and d['precision'] >= 0.95)],
+        ['line recall / precision, `cv::HoughLinesP`', '%.2f / %.2f' % (d['opencv_recall'], d['opencv_precision']), ''],
+        ['line recall / precision, FastLineDetector (its segments ≥ 30 px)', '%.2f / %.2f' % (d['fld_recall'], d['fld_precision']), ''],
+        ['line recall / precision, LSD (its segments ≥ 30 px)', '%.2f / %.2f' % (d['lsd_recall'], d['lsd_precision']), ''],
+    ]
+    if d.get('real_frames', 0) > 0:
+        rows += [
+            ['real frames (%d of `uav_horizon`, every 10th, 480x480): ours, Sobel + RLE Hough + horizon' % d['real_frames'],
+             ms(d['real_frame_ms']), 'no slower than FastLineDetector: ' + met(d['real_frame_ms'] <= d['real_frame_fld_ms'])],
+            ['… `cvtColor` + FastLineDetector / LSD / Gauss + Canny + HoughLinesP', '%.2f / %.1f / %.2f ms (ours %.1fx / %.1fx / %.1fx faster)' % (
+                d['real_frame_fld_ms'], d['real_frame_lsd_ms'], d['real_frame_houghp_ms'], x(d['real_frame_ms'], d['real_frame_fld_ms']),
+                x(d['real_frame_ms'], d['real_frame_lsd_ms']), x(d['real_frame_ms'], d['real_frame_houghp_ms'])), '']]
+    rows += [['sample pairs per frame: RLE per object / global random Hough (eq. 4)', '%.1fk / %.0fk' % (
+                 d['sample_pairs_rle'] / 1e3, d['sample_pairs_global'] / 1e3), ''],
+             ['horizon angle error, median', '%.3f°' % d['horizon_err_deg_median'], '< 0.5°']]
+    return table(['', 'measured', 'target'], rows) + '\n\n' + provenance('make bench', 'landmark', d)
+
+
+def eval_horizon():
+    d = load('eval_horizon')
+    names = {'ours (rle_vision, defaults)': 'ours (defaults)', 'FastLineDetector (longest level)': 'FastLineDetector',
+             'LSD (longest level)': 'LSD', 'HoughLinesP (longest level)': 'Gauss + Canny + HoughLinesP'}
+    rows = []
+    for key, m in d['methods'].items():
+        name = names.get(key, key)
+        passed = '%.1f%%' % m['pass_pct']
+        rows.append([name, '**%s**' % passed if name.startswith('ours') else passed, '%.1f%%' % m['found_pct'],
+                     '%.2f° / %.2f°' % (m['angle_error_mean_deg'], m['angle_error_median_deg']),
+                     '%.1f px' % m['distance_error_mean_px'], '%.1f%%' % m['on_horizon_pct'],
+                     '%.1f%%' % m['confident_pass_pct'], '%.2f' % m['ms_per_frame']])
+    return (table(['method', 'pass', 'found', 'angle error mean / median', 'distance error mean', 'on horizon',
+                   'pass when confidence ≥ 0.5', 'ms/frame'], rows) + '\n\n' +
+            provenance('make eval', 'eval_horizon', d) + ', %d frames' % d['frames'])
+
+
+def eval_balls():
+    d = load('eval_balls')
+    methods = list(d['methods'])
+    cell = lambda s: 'recall %.1f%%, precision %.1f%% (%d blobs), %.2f ms/frame' % (  # noqa: E731
+        s['recall_pct'], s['precision_pct'], s['blobs'], s['ms_per_frame'])
+    rows = []
+    for folder, by_method in d['folders'].items():
+        rows.append([folder, by_method[methods[0]]['balls']] + [cell(by_method[m]) for m in methods])
+    rows.append(['all', d['methods'][methods[0]]['balls']] + ['**%s**' % cell(d['methods'][m]) for m in methods])
+    return (table(['folder', 'balls'] + methods, rows) + '\n\n' + provenance('make eval', 'eval_balls', d) +
+            '; range calibrated on `%s`: min %s, max %s' % (os.path.basename(d['calibrated_on']), d['range']['min'],
+                                                          d['range']['max']))
+
+
+def latency():
+    d = load('latency')
+    rows = []
+    for r in d['runs']:
+        config, _, repeat = r['label'].partition('#')
+        size, _, priority = config.partition('@')
+        how = '`realtime_priority:=0`' if priority == 'normal' else 'as launched (`realtime_priority` 50)'
+        cpu = r['cpu_percent_of_one_core']
+        p99 = r.get('window_p99_at_most_ms')
+        rows.append(['%s, %s, run %s' % (size, how, repeat or '1'), r['frames'], ms(r['p50_ms']), ms(r['p99_ms']),
+                     ('**≤ %s ms**' % ('%g' % p99)) if p99 is not None else '> 5 ms',
+                     '%.2f%%' % r['window_percent_over_ms']['2'] if 'window_percent_over_ms' in r else '',
+                     ms(r['max_ms']), r['tracker_drops'], r['landmark_skips'],
+                     '%.1f / %.1f / %.1f / %.1f' % (cpu['simulator'], cpu['tracker'], cpu['edge detector'], cpu['landmark'])])
+    return (table(['run', 'frames', 'p50 (since start)', 'p99 (since start)', 'p99 over the 60-s window',
+                   'window frames over 2 ms', 'max', 'tracker drops', 'landmark skips',
+                   'CPU % of one core: simulator / tracker / edges / landmark'], rows) + '\n\n' +
+            provenance('make bench-latency', 'latency', d))
+
+
+WRITERS = {f.__name__: f for f in (tracker, tracker_noise, landmark, eval_horizon, eval_balls, latency)}
+
+
+def render(text):
+    """The README with every figures region rewritten; raises KeyError on an unknown name."""
+    return REGION.sub(lambda m: m.group(1) + WRITERS[m.group(2)]() + '\n' + m.group(4), text)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    mode = parser.add_mutually_exclusive_group(required=True)
+    mode.add_argument('--write', action='store_true')
+    mode.add_argument('--check', action='store_true')
+    parser.add_argument('--readme', default=os.path.join(ROOT, 'README.md'))
+    args = parser.parse_args()
+    text = open(args.readme).read()
+    try:
+        new = render(text)
+    except (OSError, KeyError, ValueError) as e:
+        print('[figures] cannot write the README tables: %s' % e)
+        return 1
+    if args.write:
+        with open(args.readme, 'w') as f:
+            f.write(new)
+        print('[figures] wrote %d tables into %s' % (len(REGION.findall(new)), args.readme))
+        return 0
+    old_regions = {m.group(2): m.group(3) for m in REGION.finditer(text)}
+    stale = [name for name, body in ((m.group(2), m.group(3)) for m in REGION.finditer(new)) if old_regions[name] != body]
+    for name in stale:
+        line = text[:text.index('<!-- figures: %s -->' % name)].count('\n') + 1
+        print('[figures] README.md:%d: the %s table differs from bench/results (run scripts/readme_figures.py --write)'
+              % (line, name))
+    print('[figures] %d tables, %d differ from bench/results' % (len(old_regions), len(stale)))
+    return 1 if stale else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
