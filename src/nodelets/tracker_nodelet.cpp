@@ -105,6 +105,12 @@ class TrackerNodelet : public nodelet::Nodelet {
 };
 
 TrackerNodelet::~TrackerNodelet() {
+  // Frames may be processed in other threads (inline at normal priority): unsubscribing waits
+  // for one in progress, so none runs on members being destroyed.
+  {
+    std::lock_guard<std::mutex> lock(connect_mutex_);
+    sub_image_.shutdown();
+  }
   frame_thread_running_ = false;
   if (frame_thread_.joinable()) frame_thread_.join();
 }
