@@ -24,25 +24,31 @@ class DiagnosticsTest(unittest.TestCase):
     def test_every_nodelet_reports(self):
         lock = threading.Lock()
         latest = {}
+        rates = {}  # every report's input rate, per status
 
         def callback(msg):
             with lock:
                 for status in msg.status:
                     latest[status.name] = {kv.key: kv.value for kv in status.values}
+                    if 'input rate (Hz)' in latest[status.name]:
+                        rates.setdefault(status.name, []).append(float(latest[status.name]['input rate (Hz)']))
         # Outputs must have subscribers, or the lazy nodelets rightly report no input.
         keep = [rospy.Subscriber('/camera/%s' % t, rospy.AnyMsg, lambda m: None) for t in ('lines', 'obstacles')]
         rospy.Subscriber('/diagnostics', DiagnosticArray, callback, queue_size=50)
         time.sleep(6.0)  # a few 1-s reports at full rate
         with lock:
             reports = dict(latest)
+            report_rates = {name: sorted(r) for name, r in rates.items()}
         for name, (min_rate, extra) in EXPECTED.items():
             self.assertIn(name, reports, 'no diagnostics named %r (got %s)' % (name, sorted(reports)))
             values = reports[name]
             for key in COMMON + extra:
                 self.assertIn(key, values, '%s lacks %r' % (name, key))
-            rate = float(values['input rate (Hz)'])
-            self.assertGreater(rate, min_rate, '%s: input rate %.1f Hz' % (name, rate))
-            self.assertLess(rate, 40.0, name)
+            # The median over the reports: one 1-s window may hold a burst of late timer frames
+            # (47 Hz once on a loaded machine); counting every frame twice would give ~60 in all.
+            rate = report_rates[name][len(report_rates[name]) // 2]
+            self.assertGreater(rate, min_rate, '%s: input rate %.1f Hz (reports %s)' % (name, rate, report_rates[name]))
+            self.assertLess(rate, 40.0, '%s: input rate %.1f Hz (reports %s)' % (name, rate, report_rates[name]))
             self.assertGreater(float(values['processing time mean (ms)']), 0.0, name)
         tracker = reports['camera/tracker: tracker']
         self.assertEqual(tracker['colour classes'], '4')
@@ -53,6 +59,7 @@ class DiagnosticsTest(unittest.TestCase):
         self.assertEqual(landmark['learned colour classes'], '4')
         rospy.loginfo('diagnostics: %s', ', '.join('%s %.1f Hz' % (n.split(':')[1].strip(), float(reports[n]['input rate (Hz)']))
                                                    for n in EXPECTED))
+        rospy.loginfo('input rates per report: %s', report_rates)
         del keep
 
 
