@@ -79,12 +79,15 @@ def shell_env():
     return env
 
 
+def login_shell(script):
+    """argv of a fresh login shell (only KEEP_ENV passed in) running `script` from the checkout."""
+    return ['env', '-i'] + ['%s=%s' % kv for kv in shell_env().items()] + ['bash', '-l', '-c', 'cd %s\n%s' % (ROOT, script)]
+
+
 def run(command, prelude, timeout_s):
     """(passed, how, output) of one command in a fresh login shell."""
-    script = 'cd %s\n%s\n%s\n' % (ROOT, '\n'.join(prelude), command)
-    proc = subprocess.Popen(['env', '-i'] + ['%s=%s' % kv for kv in shell_env().items()] + ['bash', '-l', '-c', script],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True, text=True,
-                            errors='replace')
+    proc = subprocess.Popen(login_shell('%s\n%s\n' % ('\n'.join(prelude), command)), stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, start_new_session=True, text=True, errors='replace')
     try:
         output, _ = proc.communicate(timeout=timeout_s)
         how = 'exit %d' % proc.returncode
@@ -109,17 +112,15 @@ class Demo:
     """demo.launch in the background for the blocks that need a running pipeline."""
 
     def __init__(self, prelude):
-        script = 'cd %s\n%s\nexec roslaunch --no-summary rle_vision demo.launch rviz:=false realtime_priority:=0\n' % (
-            ROOT, '\n'.join(prelude))
+        script = '%s\nexec roslaunch --no-summary rle_vision demo.launch rviz:=false realtime_priority:=0\n' % (
+            '\n'.join(prelude))
         self.log = open(os.path.join(os.environ.get('ROS_HOME', '/tmp'), 'readme_check_demo.log'), 'w')
-        self.proc = subprocess.Popen(['env', '-i'] + ['%s=%s' % kv for kv in shell_env().items()] +
-                                     ['bash', '-l', '-c', script], stdout=self.log, stderr=subprocess.STDOUT,
+        self.proc = subprocess.Popen(login_shell(script), stdout=self.log, stderr=subprocess.STDOUT,
                                      start_new_session=True)
         # Until the master is up rostopic fails at once: ask again.
-        wait = ('cd %s\n%s\nfor i in $(seq 30); do timeout 10 rostopic echo -n 1 /camera/blobs/header > /dev/null 2>&1 '
-                '&& exit 0; sleep 2; done; exit 1\n' % (ROOT, '\n'.join(prelude)))
-        ok = subprocess.call(['env', '-i'] + ['%s=%s' % kv for kv in shell_env().items()] + ['bash', '-l', '-c', wait],
-                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL) == 0
+        wait = ('%s\nfor i in $(seq 30); do timeout 10 rostopic echo -n 1 /camera/blobs/header > /dev/null 2>&1 '
+                '&& exit 0; sleep 2; done; exit 1\n' % '\n'.join(prelude))
+        ok = subprocess.call(login_shell(wait), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL) == 0
         if not ok:
             print('[readme] the demo gave no blobs within 60 s (log: %s)' % self.log.name)
 
@@ -206,8 +207,7 @@ def main():
         print('[readme] %s has no block that sources .ws/devel/setup.bash' % name)
         return 1
     prelude = setup[0].commands
-    fixtures = subprocess.call(['env', '-i'] + ['%s=%s' % kv for kv in shell_env().items()] + [
-        'bash', '-l', '-c', 'cd %s\n%s\npython3 scripts/readme_fixtures.py' % (ROOT, '\n'.join(prelude))])
+    fixtures = subprocess.call(login_shell('%s\npython3 scripts/readme_fixtures.py' % '\n'.join(prelude)))
     if fixtures != 0:
         print('[readme] making the files the README names failed')
         return 1

@@ -4,18 +4,10 @@
 
 namespace rle_vision {
 
-bool viewImage(const sensor_msgs::Image& msg, PixelFormat* format, cv::Mat* mat, std::string* error) {
-  if (!pixelFormatFromEncoding(msg.encoding, format)) {
-    *error = "unsupported image encoding '" + msg.encoding + "' (supported: " + supportedEncodings() +
-             "); Bayer cameras: run the pipeline with debayer:=true (pipeline.launch, play.launch)";
-    return false;
-  }
+bool viewImageBytes(const sensor_msgs::Image& msg, int type, cv::Mat* mat, std::string* error) {
   // Size first: a huge or empty header must not lead to a huge allocation or a wrapped product.
   *error = checkImageSize(msg.width, msg.height);
   if (!error->empty()) return false;
-  int type = CV_8UC3;
-  if (*format == PixelFormat::MONO8) type = CV_8UC1;
-  if (*format == PixelFormat::UYVY || *format == PixelFormat::YUYV) type = CV_8UC2;
   const size_t row_bytes = static_cast<size_t>(msg.width) * CV_ELEM_SIZE(type);
   if (msg.step < row_bytes) {
     *error = "image step " + std::to_string(msg.step) + " is smaller than width x bytes per pixel (" +
@@ -29,6 +21,19 @@ bool viewImage(const sensor_msgs::Image& msg, PixelFormat* format, cv::Mat* mat,
   }
   *mat = cv::Mat(static_cast<int>(msg.height), static_cast<int>(msg.width), type,
                  const_cast<uint8_t*>(msg.data.data()), msg.step);
+  return true;
+}
+
+bool viewImage(const sensor_msgs::Image& msg, PixelFormat* format, cv::Mat* mat, std::string* error) {
+  if (!pixelFormatFromEncoding(msg.encoding, format)) {
+    *error = "unsupported image encoding '" + msg.encoding + "' (supported: " + supportedEncodings() +
+             "); Bayer cameras: run the pipeline with debayer:=true (pipeline.launch, play.launch)";
+    return false;
+  }
+  int type = CV_8UC3;
+  if (*format == PixelFormat::MONO8) type = CV_8UC1;
+  if (*format == PixelFormat::UYVY || *format == PixelFormat::YUYV) type = CV_8UC2;
+  if (!viewImageBytes(msg, type, mat, error)) return false;
   *error = checkImage(*mat, *format);
   return error->empty();
 }

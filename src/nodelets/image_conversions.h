@@ -17,6 +17,9 @@ namespace rle_vision {
 // yuv422_yuy2 on older cv_bridge versions), after checking the encoding, the step and the
 // data size. On failure returns false and says why in `error`; the message must outlive `mat`.
 bool viewImage(const sensor_msgs::Image& msg, PixelFormat* format, cv::Mat* mat, std::string* error);
+// The byte-layout part of viewImage for a known OpenCV type (e.g. CV_8UC1 for a Bayer mosaic):
+// size limits, step and data length checked, then a zero-copy view.
+bool viewImageBytes(const sensor_msgs::Image& msg, int type, cv::Mat* mat, std::string* error);
 
 // A bgr8 image message (copied) with the given header.
 sensor_msgs::ImagePtr debugImageMsg(const std_msgs::Header& header, const cv::Mat& bgr);

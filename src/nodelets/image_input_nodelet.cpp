@@ -157,13 +157,9 @@ void ImageInputNodelet::rawCb(const sensor_msgs::ImageConstPtr& msg) {
   }
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start_ms = threadCpuMs();
-  std::string error = checkImageSize(msg->width, msg->height);
-  if (!error.empty()) return dropFrame(error);
-  if (msg->step < msg->width || msg->data.size() < static_cast<size_t>(msg->step) * msg->height) {
-    return dropFrame("Bayer image data is smaller than its step x height");
-  }
-  const cv::Mat mosaic(static_cast<int>(msg->height), static_cast<int>(msg->width), CV_8UC1,
-                       const_cast<uint8_t*>(msg->data.data()), msg->step);
+  std::string error;
+  cv::Mat mosaic;
+  if (!viewImageBytes(*msg, CV_8UC1, &mosaic, &error)) return dropFrame(error);
   cv::Mat bgr;
   if (!demosaicBayer(mosaic, msg->encoding, &bgr, &error)) return dropFrame(error);
   publish(msg->header, {bgr, "bgr8"});

@@ -11,16 +11,17 @@ import time
 import unittest
 
 import rosbag
-import rosgraph
 import rospy
 import rostest
 from rle_vision.msg import BlobArray, Horizon, LineArray, ObstacleArray
 from std_srvs.srv import SetBool
 
 sys.path.insert(0, __file__.rsplit('/', 1)[0])
-from truth_matching import store_by_stamp  # noqa: E402
+from truth_matching import store_by_stamp, wait_until_wired  # noqa: E402
 
 FRAMES = 60
+# Every replay input, subscribed once the replay pipeline is connected.
+REPLAY_INPUTS = ['/replay/image_raw', '/replay/camera_info', '/replay/edges', '/replay/blobs', '/replay/tf']
 TOPICS = {'blobs': BlobArray, 'lines': LineArray, 'horizon': Horizon, 'obstacles': ObstacleArray}
 
 
@@ -72,20 +73,6 @@ class BagReplayTest(unittest.TestCase):
             time.sleep(0.2)
         return False
 
-    @staticmethod
-    def wait_for_replay_wired(timeout_s):
-        """True once every replay input has a subscriber other than this test, and the pause
-        service is up."""
-        wanted = ['/replay/image_raw', '/replay/camera_info', '/replay/edges', '/replay/blobs', '/replay/tf']
-        deadline = time.time() + timeout_s
-        while time.time() < deadline and not rospy.is_shutdown():
-            _, subscribers, services = rosgraph.Master('/bag_replay').getSystemState()
-            nodes = {topic: set(names) - {rospy.get_name()} for topic, names in subscribers}
-            if all(nodes.get(t) for t in wanted) and any(s == '/play/pause_playback' for s, _ in services):
-                return True
-            time.sleep(0.2)
-        return False
-
     def test_replay_equals_live(self):
         bag_path = rospy.get_param('~bag')
         # The recorder stops by itself (duration_s) and closes the bag.
@@ -107,7 +94,7 @@ class BagReplayTest(unittest.TestCase):
             # The bag plays once the replay's nodes are connected: the ground projector subscribes
             # to blobs only when obstacles has a subscriber, and a frame played before that would
             # have no obstacles (a loaded machine can take longer than any fixed delay).
-            self.assertTrue(self.wait_for_replay_wired(60), 'the replay pipeline never connected')
+            self.assertTrue(wait_until_wired(REPLAY_INPUTS, 60), 'the replay pipeline never connected')
             rospy.ServiceProxy('/play/pause_playback', SetBool)(False)
             done = self.wait_for(lambda: set(live['blobs']) <= set(replay['blobs']) and
                                  set(live['obstacles']) <= set(replay['obstacles']), 60)

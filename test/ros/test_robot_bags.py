@@ -9,6 +9,7 @@ import glob
 import os
 import signal
 import subprocess
+import sys
 import threading
 import time
 import unittest
@@ -16,7 +17,6 @@ import unittest
 import cv2
 import numpy as np
 import rosbag
-import rosgraph
 import rospkg
 import rospy
 import rostest
@@ -24,6 +24,9 @@ from rle_vision.msg import BlobArray, Horizon, LineArray, ObstacleArray
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import CameraInfo, CompressedImage, Image
 from std_srvs.srv import SetBool
+
+sys.path.insert(0, __file__.rsplit('/', 1)[0])
+from truth_matching import wait_until_wired  # noqa: E402
 
 FRAMES = 12
 MARKER_PX = 40
@@ -120,18 +123,6 @@ class RobotBagsTest(unittest.TestCase):
             if msg.level == Log.WARN and 'no transform from' in msg.msg and self.no_transform_wall is None:
                 self.no_transform_wall = time.time()
 
-    @staticmethod
-    def wait_wired(inputs, timeout_s):
-        """True once every input has a subscriber other than this test and the bag is paused."""
-        deadline = time.time() + timeout_s
-        while time.time() < deadline and not rospy.is_shutdown():
-            _, subscribers, services = rosgraph.Master('/robot_bags').getSystemState()
-            nodes = {topic: set(names) - {rospy.get_name()} for topic, names in subscribers}
-            if all(nodes.get(t) for t in inputs) and any(s == '/play/pause_playback' for s, _ in services):
-                return True
-            time.sleep(0.2)
-        return False
-
     def play(self, kind, args, inputs):
         path = os.path.join(rospy.get_param('~bag_dir'), 'rle_vision_robot_%s.bag' % kind)
         stamps = write_bag(path, self.frames, kind)
@@ -142,7 +133,7 @@ class RobotBagsTest(unittest.TestCase):
                                  'start_delay_s:=0', 'paused:=true', 'rate:=0.5'] + args,
                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
         try:
-            self.assertTrue(self.wait_wired(inputs, 60), 'the %s replay never connected %s' % (kind, inputs))
+            self.assertTrue(wait_until_wired(inputs, 60), 'the %s replay never connected %s' % (kind, inputs))
             # The master lists a subscriber before its connection to the player is made: a frame
             # played in between would be lost.
             time.sleep(1.0)

@@ -1,5 +1,10 @@
-"""Helpers shared by the rostests: pairing outputs with simulator ground truth."""
+"""Helpers shared by the rostests: pairing outputs with simulator ground truth, and waiting
+for a paused bag's replay pipeline to connect."""
 import math
+import time
+
+import rosgraph
+import rospy
 
 
 def store_by_stamp(lock, table):
@@ -9,6 +14,19 @@ def store_by_stamp(lock, table):
         with lock:
             table[msg.header.stamp] = msg
     return callback
+
+
+def wait_until_wired(inputs, timeout_s):
+    """True once every topic in `inputs` has a subscriber other than this test and the paused
+    player's /play/pause_playback service is up."""
+    deadline = time.time() + timeout_s
+    while time.time() < deadline and not rospy.is_shutdown():
+        _, subscribers, services = rosgraph.Master(rospy.get_name()).getSystemState()
+        nodes = {topic: set(names) - {rospy.get_name()} for topic, names in subscribers}
+        if all(nodes.get(t) for t in inputs) and any(s == '/play/pause_playback' for s, _ in services):
+            return True
+        time.sleep(0.2)
+    return False
 
 
 def nearest_blob(blobs, obj, max_distance):
