@@ -93,7 +93,17 @@ class TrackerInputsTest(unittest.TestCase):
             time.sleep(0.05)
         self.fail('no blobs for the image stamped %.3f' % stamp_s)
 
-    def logs_matching(self, level, text):
+    def logs_matching(self, level, text, expected, timeout=10.0):
+        """The log messages of `level` containing `text`, once `expected` of them arrived (or the
+        timeout passed), plus a short settling time so that extra ones are counted too: /rosout
+        is another connection than blobs, and may arrive after them."""
+        deadline = time.time() + timeout
+        while time.time() < deadline:
+            with self.lock:
+                if sum(1 for m in self.logs if m.level == level and text in m.msg) >= expected:
+                    break
+            time.sleep(0.05)
+        time.sleep(0.5)
         with self.lock:
             return [m for m in self.logs if m.level == level and text in m.msg]
 
@@ -132,7 +142,7 @@ class TrackerInputsTest(unittest.TestCase):
         self.send(make_image('bgr8'), 300.0)
         self.assert_red_square(self.wait_for_blobs(300.0))
         # One error per kind of problem (the five Bayer frames log once), each saying what is wrong.
-        errors = [m.msg for m in self.logs_matching(Log.ERROR, 'dropping image')]
+        errors = [m.msg for m in self.logs_matching(Log.ERROR, 'dropping image', 4)]
         self.assertEqual(len(errors), 4, errors)
         self.assertIn("unsupported image encoding 'bayer_rggb8'", errors[0])
         self.assertIn('supported: bgr8', errors[0])
@@ -147,7 +157,7 @@ class TrackerInputsTest(unittest.TestCase):
             self.send(make_image('mono8'), 400.0 + i)
         msg = self.wait_for_blobs(402.0)
         self.assertEqual(len(msg.blobs), 0)  # the shipped classes all constrain chroma
-        warnings = self.logs_matching(Log.WARN, 'mono8 images carry no colour')
+        warnings = self.logs_matching(Log.WARN, 'mono8 images carry no colour', 1)
         self.assertEqual(len(warnings), 1)
 
     def test_4_color_ranges_swap_in_and_broken_ones_are_refused(self):
@@ -165,7 +175,7 @@ class TrackerInputsTest(unittest.TestCase):
         self.send(make_image('bgr8'), 501.0)
         msg = self.wait_for_blobs(501.0)
         self.assertEqual([b.color for b in msg.blobs], ['field'], 'a broken range set must not replace the good one')
-        errors = self.logs_matching(Log.ERROR, "unknown space 'LAB'")
+        errors = self.logs_matching(Log.ERROR, "unknown space 'LAB'", 1)
         self.assertEqual(len(errors), 1)
 
 
