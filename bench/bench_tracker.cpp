@@ -1,6 +1,7 @@
 // Tracker benchmark (issue 2): our RLE tracker core against OpenCV doing the same job and a
 // memcpy of the frame, on the same 640x480 simulator frame, one thread, in one run.
 #include <atomic>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <thread>
@@ -15,6 +16,7 @@
 #include "rle_vision/blob_tracker.h"
 #include "rle_vision/color_calibration.h"
 #include "rle_vision/color_convert.h"
+#include "rle_vision/color_tracker.h"
 #include "rle_vision/segmenter.h"
 #include "rle_vision/shared_color_table.h"
 #include "rle_vision/yolo_labels.h"
@@ -65,6 +67,62 @@ void printFrame(const char* name, const FrameTimes& t) {
   std::printf("  %-44s %8.3f ms   (%zu runs, %zu regions)\n", (std::string(name) + ", yuv422 (UYVY)").c_str(), t.uyvy_ms,
               t.runs_uyvy, t.regions_uyvy);
   std::printf("  %-44s %8.3f ms\n", (std::string(name) + ", OpenCV pipeline").c_str(), t.opencv_ms);
+}
+
+// A bad frame's cost (issue 18), with CMVision's thresholds (config/colors.txt: every class
+// down to 1 px, so every speck is a region): segmentation alone (every region built, as
+// CMVision builds them), what the Tracker nodelet runs (ColorTracker: regions under the
+// tracking size counted, not built; at most max_regions_per_class tracked), and the tracker
+// made to track every region (min_track_area_px 1, no limit), which shows the association's
+// cost growing with the regions, not their square.
+struct BoundedTimes {
+  double segment_bgr_ms = 0, segment_uyvy_ms = 0, tracked_bgr_ms = 0, tracked_uyvy_ms = 0;
+  double every_region_bgr_ms = 0, every_region_uyvy_ms = 0;
+  size_t regions_bgr = 0, regions_uyvy = 0, blobs_bgr = 0, blobs_uyvy = 0;
+};
+
+BoundedTimes timeBounded(const cv::Mat& bgr, const std::vector<ColorClass>& classes) {
+  const ColorTable table(classes);
+  const cv::Mat uyvy = bgrToUyvy(bgr);
+  BoundedTimes t;
+  for (const bool is_uyvy : {false, true}) {
+    const cv::Mat& image = is_uyvy ? uyvy : bgr;
+    const PixelFormat format = is_uyvy ? PixelFormat::UYVY : PixelFormat::BGR8;
+    Segmenter segmenter;
+    std::vector<Region> regions;
+    (is_uyvy ? t.segment_uyvy_ms : t.segment_bgr_ms) = bench::medianMs([&] {
+      segmenter.segment(image, format, table, &regions);
+      bench::keep(regions);
+    });
+    (is_uyvy ? t.regions_uyvy : t.regions_bgr) = regions.size();
+    std::vector<TrackedBlob> blobs;
+    double stamp = 0;
+    ColorTracker tracker;
+    (is_uyvy ? t.tracked_uyvy_ms : t.tracked_bgr_ms) = bench::medianMs([&] {
+      tracker.process(image, format, table, stamp += 1.0 / 30, &blobs);
+      bench::keep(blobs);
+    });
+    (is_uyvy ? t.blobs_uyvy : t.blobs_bgr) = blobs.size();
+    TrackerOptions every_region;
+    every_region.limits.min_track_area_px = 1;
+    every_region.limits.max_regions_per_class = UINT32_MAX;
+    ColorTracker unbounded(SegmenterOptions(), every_region);
+    (is_uyvy ? t.every_region_uyvy_ms : t.every_region_bgr_ms) = bench::medianMs([&] {
+      unbounded.process(image, format, table, stamp += 1.0 / 30, &blobs);
+      bench::keep(blobs);
+    }, 40, 5);
+  }
+  return t;
+}
+
+void printBounded(const char* name, const BoundedTimes& t) {
+  std::printf("  %s, colors.txt: %zu regions bgr8, %zu yuv422\n", name, t.regions_bgr, t.regions_uyvy);
+  std::printf("    %-42s %8.3f ms bgr8 %8.3f ms yuv422\n", "segment only (every region built)", t.segment_bgr_ms,
+              t.segment_uyvy_ms);
+  std::printf("    %-42s %8.3f ms bgr8 %8.3f ms yuv422   (%zu / %zu blobs)\n", "segment + tracker (the Tracker nodelet)",
+              t.tracked_bgr_ms, t.tracked_uyvy_ms, t.blobs_bgr, t.blobs_uyvy);
+  std::printf("    %-42s %8.3f ms bgr8 %8.3f ms yuv422\n", "segment + tracking every region", t.every_region_bgr_ms,
+              t.every_region_uyvy_ms);
 }
 
 // The bench frame with sensor noise of `sigma` (8-bit units per channel) instead of its own.
@@ -174,6 +232,9 @@ int main(int argc, char** argv) {
   // Real cameras are noisy: the bench frame with sensor noise sigma 25 and 60, and a real frame.
   const FrameTimes noise25 = timeFrame(noisyBenchmarkFrame(source_dir, 25), classes);
   const FrameTimes noise60 = timeFrame(noisyBenchmarkFrame(source_dir, 60), classes);
+  const std::vector<ColorClass> cmvision_classes = loadColorClasses(source_dir + "/config/colors.txt");
+  const BoundedTimes bounded25 = timeBounded(noisyBenchmarkFrame(source_dir, 25), cmvision_classes);
+  const BoundedTimes bounded60 = timeBounded(noisyBenchmarkFrame(source_dir, 60), cmvision_classes);
   cv::Mat real;
   std::vector<ColorClass> real_classes;
   const bool have_real = !real_folder.empty() && realFrame(real_folder, &real, &real_classes);
@@ -198,6 +259,10 @@ int main(int argc, char** argv) {
     printFrame((std::to_string(real.cols) + "x" + std::to_string(real.rows) + " real frame").c_str(), real_times);
   }
   std::printf("  %-44s %8.1f x    (target <= 25)\n", "ratio to memcpy", ratio_to_memcpy);
+  printBounded("noise sigma 25", bounded25);
+  std::printf("    %-42s targets: segment + tracker bgr8 <= 0.5 ms\n", "");
+  printBounded("noise sigma 60", bounded60);
+  std::printf("    %-42s targets: segment + tracker yuv422 <= 1.6 ms, bgr8 <= 3 ms\n", "");
   bench::writeJson(json_path, {{"tracker_ms", tracker_ms},
                                {"tracker_yuv422_ms", tracker_yuv422_ms},
                                {"tracker_ms_with_updates", tracker_with_updates_ms},
@@ -214,7 +279,23 @@ int main(int argc, char** argv) {
                                {"opencv_noise60_ms", noise60.opencv_ms},
                                {"tracker_real_ms", real_times.bgr_ms},
                                {"tracker_real_yuv422_ms", real_times.uyvy_ms},
-                               {"opencv_real_ms", real_times.opencv_ms}});
+                               {"opencv_real_ms", real_times.opencv_ms},
+                               {"bounded_noise25_segment_ms", bounded25.segment_bgr_ms},
+                               {"bounded_noise25_segment_yuv422_ms", bounded25.segment_uyvy_ms},
+                               {"bounded_noise25_tracker_ms", bounded25.tracked_bgr_ms},
+                               {"bounded_noise25_tracker_yuv422_ms", bounded25.tracked_uyvy_ms},
+                               {"bounded_noise25_every_region_ms", bounded25.every_region_bgr_ms},
+                               {"bounded_noise25_every_region_yuv422_ms", bounded25.every_region_uyvy_ms},
+                               {"bounded_noise25_regions", static_cast<double>(bounded25.regions_bgr)},
+                               {"bounded_noise25_regions_yuv422", static_cast<double>(bounded25.regions_uyvy)},
+                               {"bounded_noise60_segment_ms", bounded60.segment_bgr_ms},
+                               {"bounded_noise60_segment_yuv422_ms", bounded60.segment_uyvy_ms},
+                               {"bounded_noise60_tracker_ms", bounded60.tracked_bgr_ms},
+                               {"bounded_noise60_tracker_yuv422_ms", bounded60.tracked_uyvy_ms},
+                               {"bounded_noise60_every_region_ms", bounded60.every_region_bgr_ms},
+                               {"bounded_noise60_every_region_yuv422_ms", bounded60.every_region_uyvy_ms},
+                               {"bounded_noise60_regions", static_cast<double>(bounded60.regions_bgr)},
+                               {"bounded_noise60_regions_yuv422", static_cast<double>(bounded60.regions_uyvy)}});
   std::printf("wrote %s\n", json_path.c_str());
   return 0;
 }

@@ -66,6 +66,26 @@ def tracker_noise():
             provenance('make bench', 'tracker', d))
 
 
+def tracker_bounded():
+    d = load('tracker')
+    met = lambda value, bound: '≤ %s ms: %s' % (bound, 'met' if value <= bound else '**not met**')  # noqa: E731
+    rows = []
+    for sigma, bgr_bound, uyvy_bound in (('25', 0.5, None), ('60', 3.0, 1.6)):
+        k = 'bounded_noise%s_' % sigma
+        rows += [
+            ['σ = %s (%d regions bgr8, %d yuv422)' % (sigma, d[k + 'regions'], d[k + 'regions_yuv422']),
+             'segment only (every region built)', ms(d[k + 'segment_ms'], 3), ms(d[k + 'segment_yuv422_ms'], 3), ''],
+            ['', '**segment + tracker** (the Tracker nodelet)', ms(d[k + 'tracker_ms'], 3),
+             ms(d[k + 'tracker_yuv422_ms'], 3),
+             ', '.join(x for x in ('bgr8 ' + met(d[k + 'tracker_ms'], bgr_bound),
+                                   uyvy_bound and 'yuv422 ' + met(d[k + 'tracker_yuv422_ms'], uyvy_bound)) if x)],
+            ['', 'segment + tracking every region (`min_track_area_px` 1, no limit)', ms(d[k + 'every_region_ms'], 1),
+             ms(d[k + 'every_region_yuv422_ms'], 1), ''],
+        ]
+    return (table(['frame', '', 'bgr8', 'yuv422 (UYVY)', 'target'], rows) + '\n\n' +
+            provenance('make bench', 'tracker', d))
+
+
 def landmark():
     d = load('landmark')
     x = lambda ours, theirs: theirs / ours  # noqa: E731
@@ -155,7 +175,7 @@ def latency():
             provenance('make bench-latency', 'latency', d))
 
 
-WRITERS = {f.__name__: f for f in (tracker, tracker_noise, landmark, eval_horizon, eval_balls, latency)}
+WRITERS = {f.__name__: f for f in (tracker, tracker_noise, tracker_bounded, landmark, eval_horizon, eval_balls, latency)}
 
 
 def render(text):

@@ -1,12 +1,15 @@
 // Frame-to-frame tracking of regions: gated nearest neighbour on predicted centroid and size,
-// giving stable ids and image velocities.
+// giving stable ids and image velocities. A frame's cost is bounded: only regions of tracking
+// size, at most a set number per class, are tracked, and pairs are found through a grid.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "rle_vision/region_selection.h"
 #include "rle_vision/regions.h"
+#include "rle_vision/track_association.h"
 
 namespace rle_vision {
 
@@ -15,6 +18,7 @@ struct TrackerOptions {
   double max_area_ratio = 4.0;     // largest area change between frames (larger/smaller)
   int max_missed_frames = 5;       // a track unseen for longer is forgotten
   double velocity_smoothing = 0.5;  // weight of the newest velocity measurement, in (0, 1]
+  RegionLimits limits;             // which regions are tracked (tracking size, number per class)
 };
 
 struct TrackedBlob {
@@ -30,15 +34,18 @@ class BlobTracker {
   void setOptions(const TrackerOptions& options) { options_ = options; }
 
   // `stamp_s` is the image time in seconds. Time running backwards (a looped bag) starts over
-  // and returns true from lastUpdateRestarted(). Blobs come in the order of `regions`.
+  // and returns true from lastUpdateRestarted(). Blobs come in the order of `regions`, one per
+  // region that options().limits lets through.
   void update(const std::vector<Region>& regions, double stamp_s, std::vector<TrackedBlob>* blobs);
   void reset();
   bool lastUpdateRestarted() const { return restarted_; }
   size_t trackCount() const { return tracks_.size(); }
+  const TrackerOptions& options() const { return options_; }
+  // The last frame's regions per label (1 + class index): of tracking size, and tracked.
+  const std::vector<ClassRegionCount>& regionCounts() const { return selector_.counts(); }
 
  private:
-  void scoreCandidates(const std::vector<Region>& regions, double stamp_s);
-  void assign(size_t region_count);
+  void associate(const std::vector<Region>& regions, double stamp_s);
   void emitBlobs(const std::vector<Region>& regions, double stamp_s, std::vector<TrackedBlob>* blobs);
   void ageTracks(size_t old_track_count);
   struct Track {
@@ -51,14 +58,13 @@ class BlobTracker {
     int missed;
     bool has_velocity;
   };
-  struct Candidate {
-    double cost;
-    int track, region;
-  };
 
   TrackerOptions options_;
+  RegionSelector selector_;
+  TrackAssociator associator_;
   std::vector<Track> tracks_;
-  std::vector<Candidate> candidates_;
+  std::vector<Region> tracked_regions_;
+  std::vector<TrackGate> gates_;
   std::vector<int> region_track_;
   std::vector<char> track_matched_;
   uint32_t next_id_ = 1;

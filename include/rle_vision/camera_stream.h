@@ -1,5 +1,5 @@
 // One camera stream through the pipeline's core, frame after frame, as the nodelets run it
-// without ROS: the Tracker's Segmenter and BlobTracker with the current colour table, the
+// without ROS: the Tracker's ColorTracker with the current colour table, the
 // Landmark's LandmarkDetector (on the 5x5 Sobel the EdgeDetector computes) and its
 // ColorLearningLoop; ranges the loop publishes replace the table from the next frame on, as
 // color_ranges does in the pipeline. Used by rle_vision_detect --sequence and make eval.
@@ -11,11 +11,10 @@
 
 #include <opencv2/core.hpp>
 
-#include "rle_vision/blob_tracker.h"
 #include "rle_vision/color_learning_loop.h"
 #include "rle_vision/color_table.h"
+#include "rle_vision/color_tracker.h"
 #include "rle_vision/landmark_detector.h"
-#include "rle_vision/segmenter.h"
 
 namespace rle_vision {
 
@@ -44,10 +43,8 @@ class CameraStream {
   std::shared_ptr<const ColorTable> table_;
   CameraStreamOptions options_;
   ColorLearningLoop loop_;
-  Segmenter segmenter_;
-  BlobTracker tracker_;
+  ColorTracker tracker_;
   LandmarkDetector detector_;
-  std::vector<Region> regions_;
 };
 
 }  // namespace rle_vision

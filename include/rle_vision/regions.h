@@ -41,6 +41,8 @@ class RegionBuilder {
   void build(std::vector<Run>* runs, const std::vector<int32_t>& row_starts, Connectivity connectivity,
              const std::vector<uint32_t>& min_area_by_label, std::vector<Region>* regions,
              Joining joining = Joining::kSameLabel);
+  // The last build's regions per label (index = label), of any size, dropped ones included.
+  const std::vector<uint32_t>& regionCounts() const { return region_counts_; }
 
  private:
   void accumulateMoments(std::vector<Run>* runs);
@@ -55,6 +57,7 @@ class RegionBuilder {
   std::vector<int32_t> moment_index_;
   std::vector<Moments> moments_;
   std::vector<int32_t> region_of_moment_;  // index into the output regions, -1 when dropped
+  std::vector<uint32_t> region_counts_;
 };
 
 // Root of a run's set, with path halving.

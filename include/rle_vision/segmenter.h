@@ -33,6 +33,9 @@ class Segmenter {
 
   // Runs of the last segmented frame; each run's parent is its region's root run.
   const std::vector<Run>& runs() const { return runs_; }
+  // The last frame's regions per label (index = label = 1 + class index), of any size: the
+  // min areas drop regions from the output, not from these counts.
+  const std::vector<uint32_t>& regionCounts() const { return builder_.regionCounts(); }
 
  private:
   SegmenterOptions options_;

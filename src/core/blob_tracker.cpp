@@ -17,47 +17,27 @@ void BlobTracker::update(const std::vector<Region>& regions, double stamp_s,
   has_stamp_ = true;
   last_stamp_s_ = stamp_s;
   ++frame_;
-  scoreCandidates(regions, stamp_s);
-  assign(regions.size());
+  selector_.select(regions, options_.limits, &tracked_regions_);
+  associate(tracked_regions_, stamp_s);
   const size_t old_track_count = tracks_.size();
-  emitBlobs(regions, stamp_s, blobs);
+  emitBlobs(tracked_regions_, stamp_s, blobs);
   ageTracks(old_track_count);
 }
 
-void BlobTracker::scoreCandidates(const std::vector<Region>& regions, double stamp_s) {
-  // Score every same-class (track, region) pair inside the gates.
-  candidates_.clear();
-  const double log_max_ratio = std::log(std::max(options_.max_area_ratio, 1.0 + 1e-9));
-  for (int t = 0; t < static_cast<int>(tracks_.size()); ++t) {
-    const Track& track = tracks_[t];
+void BlobTracker::associate(const std::vector<Region>& regions, double stamp_s) {
+  // Greedy global assignment of the same-class (track, region) pairs inside the gates,
+  // cheapest pair first (optimal for well separated objects).
+  gates_.clear();
+  for (const Track& track : tracks_) {
     const double dt = std::max(0.0, stamp_s - track.last_seen_s);
-    const double px = track.cx + track.vx * dt;
-    const double py = track.cy + track.vy * dt;
     // A track unseen for a while may have drifted further: widen its gate.
-    const double gate = options_.gate_px * (1.0 + 0.5 * track.missed);
-    for (int r = 0; r < static_cast<int>(regions.size()); ++r) {
-      const Region& region = regions[r];
-      if (region.label != track.label) continue;
-      const double distance = std::hypot(region.cx - px, region.cy - py);
-      if (distance > gate) continue;
-      const double log_ratio = std::fabs(std::log(static_cast<double>(region.area) / track.area));
-      if (log_ratio > log_max_ratio) continue;
-      candidates_.push_back({distance / gate + 0.5 * log_ratio / log_max_ratio, t, r});
-    }
+    gates_.push_back({track.label, track.cx + track.vx * dt, track.cy + track.vy * dt,
+                      options_.gate_px * (1.0 + 0.5 * track.missed), std::log(static_cast<double>(track.area))});
   }
-}
-
-void BlobTracker::assign(size_t region_count) {
-  // Greedy global assignment, cheapest pair first (optimal for well separated objects).
-  std::sort(candidates_.begin(), candidates_.end(),
-            [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
-  region_track_.assign(region_count, -1);
+  associator_.associate(gates_, regions, options_.max_area_ratio, options_.gate_px, &region_track_);
   track_matched_.assign(tracks_.size(), 0);
-  for (const Candidate& c : candidates_) {
-    if (region_track_[c.region] >= 0 || track_matched_[c.track]) continue;
-    region_track_[c.region] = c.track;
-    track_matched_[c.track] = 1;
-  }
+  for (int t : region_track_)
+    if (t >= 0) track_matched_[t] = 1;
 }
 
 void BlobTracker::emitBlobs(const std::vector<Region>& regions, double stamp_s, std::vector<TrackedBlob>* blobs) {

@@ -10,8 +10,7 @@ CameraStream::CameraStream(const std::vector<ColorClass>& classes, const CameraS
 void CameraStream::process(const cv::Mat& bgr, double stamp_s, Frame* frame) {
   frame->table = table_;
   frame->ignored_ranges.clear();
-  segmenter_.segment(bgr, PixelFormat::BGR8, *table_, &regions_);
-  tracker_.update(regions_, stamp_s, &frame->blobs);
+  tracker_.process(bgr, PixelFormat::BGR8, *table_, stamp_s, &frame->blobs);
   detector_.detectInImage(bgr, options_.landmark, &frame->landmarks);
   const ColorLearningLoop::Step step =
       options_.loop.enabled ? loop_.learn(bgr, frame->landmarks, detector_.edgeObjects(), stamp_s, stamp_s,

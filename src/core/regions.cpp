@@ -8,6 +8,15 @@ namespace {
 // Sum of k^2 for k = 0..n (n >= -1).
 inline int64_t sumOfSquares(int64_t n) { return n * (n + 1) * (2 * n + 1) / 6; }
 
+// Major-axis orientation in (-pi/2, pi/2]. A noisy frame has thousands of one-pixel regions
+// (no covariance, no spread): those skip atan2, with its exact result, +0.
+inline double majorAxisAngle(double var_xx, double var_yy, double var_xy) {
+  const double spread = var_xx - var_yy;
+  if (var_xy == 0 && !std::signbit(var_xy) && spread == 0 && !std::signbit(spread)) return 0.0;
+  const double angle = 0.5 * std::atan2(2.0 * var_xy, spread);
+  return angle <= -M_PI / 2 ? angle + M_PI : angle;  // atan2(-0, negative) = -pi
+}
+
 }  // namespace
 
 void RegionBuilder::build(std::vector<Run>* runs_ptr, const std::vector<int32_t>& row_starts,
@@ -80,10 +89,13 @@ void RegionBuilder::accumulateMoments(std::vector<Run>* runs_ptr) {
 void RegionBuilder::emitRegions(const std::vector<Run>& runs, const std::vector<uint32_t>& min_area_by_label,
                                 std::vector<Region>* regions) {
   region_of_moment_.assign(moments_.size(), -1);
+  region_counts_.clear();
   for (int32_t i = 0; i < static_cast<int32_t>(runs.size()); ++i) {
     if (runs[i].parent != i) continue;
     const Moments& m = moments_[moment_index_[i]];
     const int label = runs[i].label;
+    if (label >= static_cast<int>(region_counts_.size())) region_counts_.resize(static_cast<size_t>(label) + 1, 0);
+    ++region_counts_[label];
     if (label < static_cast<int>(min_area_by_label.size()) &&
         static_cast<uint64_t>(m.area) < min_area_by_label[label]) {
       continue;
@@ -101,8 +113,7 @@ void RegionBuilder::emitRegions(const std::vector<Run>& runs, const std::vector<
     r.var_xx = m.sum_xx * inv - r.cx * r.cx;
     r.var_yy = m.sum_yy * inv - r.cy * r.cy;
     r.var_xy = m.sum_xy * inv - r.cx * r.cy;
-    r.angle = 0.5 * std::atan2(2.0 * r.var_xy, r.var_xx - r.var_yy);
-    if (r.angle <= -M_PI / 2) r.angle += M_PI;  // atan2(-0, negative) = -pi; keep (-pi/2, pi/2]
+    r.angle = majorAxisAngle(r.var_xx, r.var_yy, r.var_xy);
     r.root_run = i;
     r.bottom_at_cx = -1;
     region_of_moment_[moment_index_[i]] = static_cast<int32_t>(regions->size());

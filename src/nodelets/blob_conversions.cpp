@@ -51,9 +51,9 @@ CmvisionBlobs cmvisionBlobsMsg(const BlobArray& blobs, const ColorTable& table) 
     c.x = static_cast<uint32_t>(std::rint(b.cx + 0.5));  // cmvision's rounding, kept for drop-in use
     c.y = static_cast<uint32_t>(std::rint(b.cy + 0.5));
     c.left = b.left;
-    c.right = b.right;
+    c.right = b.right + 1;  // CMVision's x2 = x + run length: one past the last column
     c.top = b.top;
-    c.bottom = b.bottom;
+    c.bottom = b.bottom;  // its y2 is the row of the last run: inclusive
     out.blobs.push_back(c);
   }
   out.blob_count = static_cast<uint32_t>(out.blobs.size());

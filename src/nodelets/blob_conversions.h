@@ -13,8 +13,10 @@ namespace rle_vision {
 
 Blob blobToMsg(const TrackedBlob& blob, const std::string& color_name);
 
-// The blobs in cmvision's message shape (cmvision/Blobs), ordered as cmvision orders them: by
-// class, then by area (largest first); colours are the classes' display colours.
+// The blobs in cmvision's message shape (cmvision/Blobs), with cmvision's conventions: `right`
+// one past the last column (CMVision's x2), `bottom` the last row (its y2), x and y rounded as
+// it rounds them. Ordered by class, then by area, largest first (what CMVision's sort means
+// to do; it fails on large regions, see the README); colours are the display colours.
 CmvisionBlobs cmvisionBlobsMsg(const BlobArray& blobs, const ColorTable& table);
 
 }  // namespace rle_vision

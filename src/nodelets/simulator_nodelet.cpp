@@ -86,13 +86,16 @@ void SimulatorNodelet::onInit() {
       pnh.getParam("seed", seed);
       scene.seed = static_cast<uint64_t>(seed);
     }
+    double noise_sigma = -1;  // a launch-file override: a noisier or cleaner camera
+    pnh.param("noise_sigma", noise_sigma, -1.0);
+    if (std::isfinite(noise_sigma) && noise_sigma >= 0) scene.noise_sigma = noise_sigma;
     simulator_ = std::make_unique<SceneSimulator>(scene);
   } catch (const std::exception& e) {
     NODELET_FATAL("cannot load the scene: %s", e.what());
     throw;
   }
-  NODELET_INFO("simulating %s: %dx%d %s at %.1f Hz, %zu boxes", scene_file.c_str(), scene.width, scene.height,
-               encoding_.c_str(), rate_hz_, scene.boxes.size());
+  NODELET_INFO("simulating %s: %dx%d %s at %.1f Hz, %zu boxes, sensor noise sigma %.1f", scene_file.c_str(),
+               scene.width, scene.height, encoding_.c_str(), rate_hz_, scene.boxes.size(), scene.noise_sigma);
 
   it_ = std::make_shared<image_transport::ImageTransport>(nh);
   pub_camera_ = it_->advertiseCamera("image_raw", 2);

@@ -1,6 +1,6 @@
 // rle_vision/Tracker: the real-time RLE colour blob tracker. A thin wrapper around the core
-// Segmenter + BlobTracker: converts messages, holds the parameters, publishes blobs (and, for
-// cmvision users, the same blobs in cmvision's message shape).
+// ColorTracker (Segmenter + BlobTracker): converts messages, holds the parameters, publishes
+// blobs (and, for cmvision users, the same blobs in cmvision's message shape).
 #include <pthread.h>
 #include <sched.h>
 
@@ -36,8 +36,10 @@
 #include "rle_vision/ColorRangeArray.h"
 #include "rle_vision/TrackerConfig.h"
 #include "rle_vision/color_config.h"
+#include "rle_vision/color_tracker.h"
 #include "rle_vision/latency_histogram.h"
 #include "rle_vision/overlay.h"
+#include "rle_vision/region_load.h"
 #include "rle_vision/segmenter.h"
 #include "rle_vision/shared_color_table.h"
 
@@ -55,6 +57,7 @@ class TrackerNodelet : public nodelet::Nodelet {
   void reconfigureCb(TrackerConfig& config, uint32_t level);
   void publishActiveRanges(const ColorTable& table, const ros::Time& stamp);
   void reportDiagnostics(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void reportRegionLoad(diagnostic_updater::DiagnosticStatusWrapper& status);
 
   // With SCHED_FIFO, images arrive on a queue served by a thread of the tracker's own, so a
   // frame never waits behind another nodelet's callback on the manager's shared worker threads.
@@ -96,11 +99,10 @@ class TrackerNodelet : public nodelet::Nodelet {
   // Image stamp to blobs publish, since start (wall-clock time only; meaningless under sim time).
   std::mutex latency_mutex_;
   LatencyHistogram latency_;
+  RegionLoadMonitor region_load_;  // frames with more regions than the tracker keeps
 
   // Used only by imageCb, which ROS calls serially.
-  Segmenter segmenter_;
-  BlobTracker tracker_;
-  std::vector<Region> regions_;
+  ColorTracker color_tracker_;
   std::vector<TrackedBlob> blobs_;
 };
 
@@ -222,6 +224,8 @@ void TrackerNodelet::reconfigureCb(TrackerConfig& config, uint32_t /*level*/) {
   tracker_options_.max_area_ratio = config.max_area_ratio;
   tracker_options_.max_missed_frames = config.max_missed_frames;
   tracker_options_.velocity_smoothing = config.velocity_smoothing;
+  tracker_options_.limits.min_track_area_px = static_cast<uint32_t>(std::max(1, config.min_track_area_px));
+  tracker_options_.limits.max_regions_per_class = static_cast<uint32_t>(std::max(1, config.max_regions_per_class));
 }
 
 void TrackerNodelet::colorRangesCb(const ColorRangeArrayConstPtr& msg) {
@@ -276,14 +280,18 @@ void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
   }
   {
     std::lock_guard<std::mutex> lock(config_mutex_);
-    segmenter_.setOptions(segmenter_options_);
-    tracker_.setOptions(tracker_options_);
+    color_tracker_.setOptions(segmenter_options_, tracker_options_);
   }
-  segmenter_.segment(image, format, *table, &regions_);
-  tracker_.update(regions_, msg->header.stamp.toSec(), &blobs_);
-  if (tracker_.lastUpdateRestarted()) {
+  color_tracker_.process(image, format, *table, msg->header.stamp.toSec(), &blobs_);
+  if (color_tracker_.tracker().lastUpdateRestarted()) {
     NODELET_WARN("image time went backwards (a looped bag?): track ids start over");
   }
+  // Overloaded classes are logged once, then counted for diagnostics.
+  const RegionLimits& limits = color_tracker_.tracker().options().limits;
+  const std::string overload = firstOverloadLog(
+      region_load_.addFrame(color_tracker_.regionCounts(), color_tracker_.trackedCounts(), limits.max_regions_per_class),
+      color_tracker_.regionCounts(), *table, limits);
+  if (!overload.empty()) NODELET_WARN("%s", overload.c_str());
 
   auto out = boost::make_shared<BlobArray>();
   out->header = msg->header;
@@ -328,10 +336,30 @@ void TrackerNodelet::reportDiagnostics(diagnostic_updater::DiagnosticStatusWrapp
       status.add(std::string("latency frames over ") + ms + " ms (since start)", latency_.countAbove(std::stod(ms)));
     }
   }
+  reportRegionLoad(status);
   std::lock_guard<std::mutex> lock(table_info_mutex_);
   status.add("colour classes", table_.load()->size());
   status.add("colour ranges from", table_source_);
   status.add("colour ranges age (s)", (ros::WallTime::now() - table_since_).toSec());
+}
+
+void TrackerNodelet::reportRegionLoad(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  const RegionLoadReport report = region_load_.takeReport();
+  const std::shared_ptr<const ColorTable> table = table_.load();
+  RegionLimits limits;
+  {
+    std::lock_guard<std::mutex> lock(config_mutex_);
+    limits = tracker_options_.limits;
+  }
+  status.add("regions (last frame)", report.regions);
+  status.add("regions tracked (last frame)", report.tracked);
+  for (const ClassLoad& load : report.overloaded) {
+    const std::string name =
+        load.label - 1 < table->size() ? table->classes()[load.label - 1].name : "#" + std::to_string(load.label - 1);
+    status.add("frames with too many regions for class " + name + " (since last report)", load.frames_overloaded);
+    status.add("frames with too many regions for class " + name + " (total)", load.frames_overloaded_total);
+    status.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, overloadMessage(name, load.most_regions, limits));
+  }
 }
 
 }  // namespace rle_vision

@@ -21,7 +21,7 @@
 #include "rle_vision/landmark_detector.h"
 #include "rle_vision/landmark_params_file.h"
 #include "rle_vision/overlay.h"
-#include "rle_vision/segmenter.h"
+#include "rle_vision/color_tracker.h"
 
 namespace {
 
@@ -132,13 +132,11 @@ class ImageDetector {
       std::cout << errorJson(path, "cannot read the image (missing, unreadable or not an image)") << std::endl;
       return false;
     }
-    std::vector<Region> regions;
     std::vector<TrackedBlob> blobs;
     LandmarkResult result;
     try {
-      segmenter_.segment(image, PixelFormat::BGR8, table_, &regions);
-      tracker_.reset();
-      tracker_.update(regions, 0.0, &blobs);
+      ColorTracker tracker;  // a new one per image: nothing carries over
+      tracker.process(image, PixelFormat::BGR8, table_, 0.0, &blobs);
       detector_.detectInImage(image, options_, &result);
     } catch (const std::exception& e) {
       std::cout << errorJson(path, e.what()) << std::endl;
@@ -151,8 +149,6 @@ class ImageDetector {
  private:
   ColorTable table_;
   LandmarkOptions options_;
-  Segmenter segmenter_;
-  BlobTracker tracker_;
   LandmarkDetector detector_;
 };
 

@@ -1,5 +1,7 @@
 // colors.yaml, CMVision colors.txt and scene files: good files load, broken ones fail loudly
 // with the file, the line and the reason.
+#include <array>
+#include <cstdio>
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -111,6 +113,63 @@ TEST(ColorConfig, ShippedColorsTxtHoldsTheShippedYamlClasses) {
     EXPECT_EQ(txt[i].max, yaml[i].max) << yaml[i].name;
     EXPECT_EQ(txt[i].display_rgb, yaml[i].display_rgb) << yaml[i].name;
   }
+}
+
+// What CMVision's own loadOptions() reads from a colors.txt, by its rules: a section header
+// line starts "[", an entry is what its sscanf pattern matches (anything after it ignored),
+// and a line matching nothing at all (sscanf returns 0: a comment, a blank line, the next
+// header, which is then lost) ends the section.
+struct CmvisionReading {
+  std::vector<std::string> names;
+  std::vector<std::array<int, 6>> thresholds;
+};
+CmvisionReading readLikeCmvision(const std::string& path) {
+  enum { kScan, kColors, kThresholds } state = kScan;
+  CmvisionReading out;
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    line += '\n';  // as fgets() leaves it: a blank line matches nothing and ends a section
+    char header[256] = {0}, name[256] = {0};
+    int r, g, b, expected;
+    double merge;
+    std::array<int, 6> t{};
+    if (state == kScan) {
+      if (std::sscanf(line.c_str(), "[%255s", header) == 1) {
+        if (std::string(header) == "Colors]") state = kColors;
+        if (std::string(header) == "Thresholds]") state = kThresholds;
+      }
+    } else if (state == kColors) {
+      const int n = std::sscanf(line.c_str(), "(%d,%d,%d) %lf %d %255s", &r, &g, &b, &merge, &expected, name);
+      if (n == 6) out.names.push_back(name);
+      if (n == 0) state = kScan;
+    } else {
+      const int n = std::sscanf(line.c_str(), "(%d:%d,%d:%d,%d:%d)", &t[0], &t[1], &t[2], &t[3], &t[4], &t[5]);
+      if (n == 6) out.thresholds.push_back(t);
+      if (n == 0) state = kScan;
+    }
+  }
+  return out;
+}
+
+TEST(ColorConfig, CmvisionReadsTheShippedColorsTxtAsWeDo) {
+  const std::vector<ColorClass> ours = loadColorClasses(sourcePath("config/colors.txt"));
+  const CmvisionReading cmvision = readLikeCmvision(sourcePath("config/colors.txt"));
+  ASSERT_EQ(cmvision.names.size(), ours.size());
+  ASSERT_EQ(cmvision.thresholds.size(), ours.size());
+  for (size_t i = 0; i < ours.size(); ++i) {
+    EXPECT_EQ(cmvision.names[i], ours[i].name);
+    for (int ch = 0; ch < 3; ++ch) {
+      EXPECT_EQ(cmvision.thresholds[i][2 * ch], ours[i].min[ch]) << ours[i].name;
+      EXPECT_EQ(cmvision.thresholds[i][2 * ch + 1], ours[i].max[ch]) << ours[i].name;
+    }
+  }
+  // The rule this guards: a comment line inside a section hides the entries below it from
+  // CMVision (we read all of them).
+  const CmvisionReading commented = readLikeCmvision(sourcePath("test/data/colors_commented.txt"));
+  EXPECT_TRUE(commented.names.empty());
+  EXPECT_TRUE(commented.thresholds.empty());
+  EXPECT_EQ(loadColorClasses(sourcePath("test/data/colors_commented.txt")).size(), 2u);
 }
 
 TEST(ColorConfig, BrokenCmvisionFilesNameTheLine) {

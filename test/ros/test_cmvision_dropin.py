@@ -71,7 +71,7 @@ class CmvisionDropInTest(unittest.TestCase):
             self.assertEqual(order, sorted(order))
             by_box = {(b.left, b.top, b.right, b.bottom): b for b in n.blobs}
             for b in c.blobs:
-                own = by_box[(b.left, b.top, b.right, b.bottom)]
+                own = by_box[(b.left, b.top, b.right - 1, b.bottom)]  # cmvision: right is one past
                 self.assertEqual((b.name, b.area), (own.color, own.area))
                 self.assertEqual((b.red, b.green, b.blue), DISPLAY_RGB[b.name])
                 self.assertEqual((b.x, b.y), (int(round(own.cx + 0.5)), int(round(own.cy + 0.5))))

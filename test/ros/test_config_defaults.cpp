@@ -66,6 +66,8 @@ TEST(ConfigDefaults, EdgeDetectorAndTrackerConfigsMatchCoreDefaults) {
   EXPECT_EQ(tracker.max_area_ratio, tracking.max_area_ratio);
   EXPECT_EQ(tracker.max_missed_frames, tracking.max_missed_frames);
   EXPECT_EQ(tracker.velocity_smoothing, tracking.velocity_smoothing);
+  EXPECT_EQ(static_cast<uint32_t>(tracker.min_track_area_px), tracking.limits.min_track_area_px);
+  EXPECT_EQ(static_cast<uint32_t>(tracker.max_regions_per_class), tracking.limits.max_regions_per_class);
 }
 
 }  // namespace

@@ -105,6 +105,24 @@ class LiveTuningTest(unittest.TestCase):
         self.assertEqual([b.area for b in self.track(image).blobs], [400])
         self.tracker.update_configuration({'min_area_px': 1})
 
+    def test_tracker_min_track_area_px(self):
+        image = BgrImage(W, H, (0, 0, 0))
+        image.fill_rect(20, 20, 30, 30, RED)     # 100 px
+        image.fill_rect(100, 100, 120, 120, RED)  # 400 px
+        self.tracker.update_configuration({'min_track_area_px': 200})
+        self.assertEqual([b.area for b in self.track(image).blobs], [400])
+        self.tracker.update_configuration({'min_track_area_px': 20})
+        self.assertEqual(sorted(b.area for b in self.track(image).blobs), [100, 400])
+
+    def test_tracker_max_regions_per_class(self):
+        image = BgrImage(W, H, (0, 0, 0))
+        for i, side in enumerate((6, 7, 8, 9, 10, 11)):  # six squares of 36 to 121 px
+            image.fill_rect(10 + 40 * i, 50, 10 + 40 * i + side, 50 + side, RED)
+        self.tracker.update_configuration({'max_regions_per_class': 3})
+        self.assertEqual(sorted(b.area for b in self.track(image).blobs), [81, 100, 121])  # the largest
+        self.tracker.update_configuration({'max_regions_per_class': 500})
+        self.assertEqual(len(self.track(image).blobs), 6)
+
     def test_tracker_connectivity(self):
         image = BgrImage(W, H, (0, 0, 0))
         image.fill_rect(100, 100, 120, 120, RED)

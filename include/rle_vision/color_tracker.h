@@ -1,0 +1,43 @@
+// The Tracker's work on one frame, without ROS: segment the image with a colour table, then
+// track the regions. Regions under the tracking size are counted by the segmenter but never
+// built, so a noisy frame with thousands of specks stays cheap. The Tracker nodelet, the
+// offline CameraStream and the benchmarks all run this.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "rle_vision/blob_tracker.h"
+#include "rle_vision/color_table.h"
+#include "rle_vision/pixel_format.h"
+#include "rle_vision/segmenter.h"
+
+namespace rle_vision {
+
+class ColorTracker {
+ public:
+  explicit ColorTracker(const SegmenterOptions& segmenting = SegmenterOptions(),
+                        const TrackerOptions& tracking = TrackerOptions()) {
+    setOptions(segmenting, tracking);
+  }
+  void setOptions(const SegmenterOptions& segmenting, const TrackerOptions& tracking);
+  // Throws std::invalid_argument with a readable reason when the image does not fit `format`.
+  void process(const cv::Mat& image, PixelFormat format, const ColorTable& table, double stamp_s,
+               std::vector<TrackedBlob>* blobs);
+
+  // The last frame's regions per label (1 + class index), of any size.
+  const std::vector<uint32_t>& regionCounts() const { return segmenter_.regionCounts(); }
+  // The last frame's regions per label of tracking size, and tracked.
+  const std::vector<ClassRegionCount>& trackedCounts() const { return tracker_.regionCounts(); }
+  const BlobTracker& tracker() const { return tracker_; }
+  const std::vector<Region>& regions() const { return regions_; }  // those built: of tracking size
+
+ private:
+  Segmenter segmenter_;
+  BlobTracker tracker_;
+  std::vector<Region> regions_;
+};
+
+}  // namespace rle_vision
