@@ -1,7 +1,8 @@
 // The Tracker's work on one frame, without ROS: segment the image with a colour table, then
-// track the regions. Regions under the tracking size are counted by the segmenter but never
-// built, so a noisy frame with thousands of specks stays cheap. The Tracker nodelet, the
-// offline CameraStream and the benchmarks all run this.
+// track the regions. Regions under the tracking size are counted by the segmenter, but no
+// region record is made for them (their runs are still joined and summed), so a noisy frame
+// with thousands of specks stays cheap. The Tracker nodelet, the offline CameraStream and
+// rle_vision_detect and the benchmarks all run this.
 #pragma once
 
 #include <cstdint>
@@ -32,7 +33,9 @@ class ColorTracker {
   // The last frame's regions per label of tracking size, and tracked.
   const std::vector<ClassRegionCount>& trackedCounts() const { return tracker_.regionCounts(); }
   const BlobTracker& tracker() const { return tracker_; }
-  const std::vector<Region>& regions() const { return regions_; }  // those built: of tracking size
+  // The regions made: those of tracking size. The blobs are these, in order, unless a class
+  // had more than max_regions_per_class (then only its largest are blobs).
+  const std::vector<Region>& regions() const { return regions_; }
 
  private:
   Segmenter segmenter_;

@@ -14,8 +14,9 @@ namespace rle_vision {
 struct RegionLimits {
   // Smaller regions are counted but not tracked (CMVision's output drops regions under 20 px).
   uint32_t min_track_area_px = 20;
-  // A class with more regions than this in one frame is overloaded (a range too wide or an
-  // image too noisy); at most its largest this many are tracked.
+  // At most this many regions of one class are tracked: its largest. A class with more regions
+  // than this in one frame, of any size, is reported as overloaded (a range too wide or an
+  // image too noisy; see region_load.h).
   uint32_t max_regions_per_class = 500;
 };
 

@@ -15,9 +15,9 @@ namespace rle_vision {
 // Where a track is expected this frame and how far it may be from there.
 struct TrackGate {
   int label = 0;
-  double x = 0, y = 0;    // predicted centroid, px
-  double gate_px = 0;     // largest centroid distance from (x, y)
-  double log_area = 0;    // natural log of the area when last seen (px)
+  double x = 0, y = 0;  // predicted centroid, px
+  double gate_px = 0;   // largest centroid distance from (x, y); > 0
+  uint32_t area = 1;    // area when last seen, px
 };
 
 struct TrackPairing {
@@ -25,18 +25,17 @@ struct TrackPairing {
   int track, region;
 };
 
-// The pair's cost when `region` (whose area's natural log is `region_log_area`) passes the
-// track's gates (same label, centroid within gate_px, area ratio within exp(log_max_area_ratio)):
-// distance / gate + 0.5 * |log area ratio| / log max ratio, lower is better.
-inline bool scorePairing(const TrackGate& track, const Region& region, double region_log_area,
-                         double log_max_area_ratio, double* cost) {
+// The pair's cost when `region` passes the track's gates (same label, centroid within
+// gate_px, area ratio within exp(log_max_area_ratio)): distance / gate + 0.5 * |log area
+// ratio| / log max ratio, lower is better. The arithmetic is the tracker's from before the grid,
+// operation for operation, so that pairs on a gate's edge fall the same way.
+inline bool scorePairing(const TrackGate& track, const Region& region, double log_max_area_ratio, double* cost) {
   if (region.label != track.label) return false;
-  const double dx = region.cx - track.x, dy = region.cy - track.y;
-  const double squared_distance = dx * dx + dy * dy;
-  if (squared_distance > track.gate_px * track.gate_px) return false;
-  const double log_ratio = std::fabs(region_log_area - track.log_area);
+  const double distance = std::hypot(region.cx - track.x, region.cy - track.y);
+  if (distance > track.gate_px) return false;
+  const double log_ratio = std::fabs(std::log(static_cast<double>(region.area) / track.area));
   if (log_ratio > log_max_area_ratio) return false;
-  *cost = std::sqrt(squared_distance) / track.gate_px + 0.5 * log_ratio / log_max_area_ratio;
+  *cost = distance / track.gate_px + 0.5 * log_ratio / log_max_area_ratio;
   return true;
 }
 
@@ -53,7 +52,8 @@ class TrackAssociator {
   // Pairs tracks with regions: the greedy global assignment, cheapest pair first in
   // cheaperPairing() order, each track and each region at most once. On return
   // region_track[r] is the track paired with region r, or -1. `cell_px` is the grid's cell
-  // size (the base gate is a good choice). Tracks with a non-finite prediction get no pair.
+  // size (the base gate is a good choice). Tracks with a non-finite prediction or a gate that
+  // is not positive get no pair.
   void associate(const std::vector<TrackGate>& tracks, const std::vector<Region>& regions, double max_area_ratio,
                  double cell_px, std::vector<int>* region_track);
   // Every pair scorePairing() accepted in the last call, grouped by track (not sorted).
@@ -65,7 +65,6 @@ class TrackAssociator {
   void assignCheapestFirst(size_t region_count, std::vector<int>* region_track);
 
   std::vector<std::pair<uint64_t, int32_t>> cells_;  // (cell key, region index), sorted
-  std::vector<double> log_areas_;                    // per region
   std::vector<TrackPairing> pairings_;
   std::vector<size_t> group_begin_, group_end_;      // per track: its pairs in pairings_
   std::vector<TrackPairing> heads_;                  // each unpaired track's cheapest pair left

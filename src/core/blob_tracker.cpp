@@ -32,7 +32,7 @@ void BlobTracker::associate(const std::vector<Region>& regions, double stamp_s) 
     const double dt = std::max(0.0, stamp_s - track.last_seen_s);
     // A track unseen for a while may have drifted further: widen its gate.
     gates_.push_back({track.label, track.cx + track.vx * dt, track.cy + track.vy * dt,
-                      options_.gate_px * (1.0 + 0.5 * track.missed), std::log(static_cast<double>(track.area))});
+                      options_.gate_px * (1.0 + 0.5 * track.missed), track.area});
   }
   associator_.associate(gates_, regions, options_.max_area_ratio, options_.gate_px, &region_track_);
   track_matched_.assign(tracks_.size(), 0);

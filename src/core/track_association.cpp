@@ -36,14 +36,12 @@ void TrackAssociator::findPairings(const std::vector<TrackGate>& tracks, const s
   if (!(cell_px >= 1.0)) cell_px = 1.0;  // also catches NaN
   const double log_max_ratio = std::log(std::max(max_area_ratio, 1.0 + 1e-9));
   cells_.clear();
-  log_areas_.clear();
   int64_t min_row = kCellRange, max_row = -kCellRange, min_column = kCellRange, max_column = -kCellRange;
   for (int32_t r = 0; r < static_cast<int32_t>(regions.size()); ++r) {
     const int64_t row = cellOf(regions[r].cy, cell_px), column = cellOf(regions[r].cx, cell_px);
     min_row = std::min(min_row, row), max_row = std::max(max_row, row);
     min_column = std::min(min_column, column), max_column = std::max(max_column, column);
     cells_.emplace_back(cellKey(regions[r].label, row, column), r);
-    log_areas_.push_back(std::log(static_cast<double>(regions[r].area)));
   }
   std::sort(cells_.begin(), cells_.end());
   // A small margin so that rounding never leaves out a cell holding a region on the gate.
@@ -51,7 +49,7 @@ void TrackAssociator::findPairings(const std::vector<TrackGate>& tracks, const s
   for (int32_t t = 0; t < static_cast<int32_t>(tracks.size()); ++t) {
     const TrackGate& track = tracks[t];
     group_begin_[t] = group_end_[t] = pairings_.size();
-    if (!std::isfinite(track.x) || !std::isfinite(track.y) || !(track.gate_px >= 0)) continue;
+    if (!std::isfinite(track.x) || !std::isfinite(track.y) || !(track.gate_px > 0)) continue;
     const int64_t row_lo = std::max(min_row, cellOf(track.y - track.gate_px - margin, cell_px));
     const int64_t row_hi = std::min(max_row, cellOf(track.y + track.gate_px + margin, cell_px));
     const int64_t column_lo = std::max(min_column, cellOf(track.x - track.gate_px - margin, cell_px));
@@ -63,7 +61,7 @@ void TrackAssociator::findPairings(const std::vector<TrackGate>& tracks, const s
                                  std::make_pair(cellKey(track.label, row, column_lo), std::numeric_limits<int32_t>::min()));
       for (; it != cells_.end() && it->first <= last; ++it) {
         double cost;
-        if (scorePairing(track, regions[it->second], log_areas_[it->second], log_max_ratio, &cost)) {
+        if (scorePairing(track, regions[it->second], log_max_ratio, &cost)) {
           pairings_.push_back({cost, t, it->second});
         }
       }

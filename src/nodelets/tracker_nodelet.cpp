@@ -303,6 +303,7 @@ void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
   }
   out->processing_time_ms = static_cast<float>(
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  const double cpu_ms = threadCpuMs() - cpu_start_ms;  // the same span as processing_time_ms
   pub_blobs_.publish(out);
   const double latency_ms = (ros::Time::now() - msg->header.stamp).toSec() * 1e3;
   if (ros::Time::useSystemTime() && latency_ms > -1e3 && latency_ms < 1e4) {  // a live camera's stamp
@@ -312,7 +313,7 @@ void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
   if (pub_cmvision_blobs_.getNumSubscribers() > 0) {
     pub_cmvision_blobs_.publish(cmvisionBlobsMsg(*out, *table));
   }
-  stats_.addFrame(out->processing_time_ms, threadCpuMs() - cpu_start_ms);
+  stats_.addFrame(out->processing_time_ms, cpu_ms);
 
   if (pub_debug_.getNumSubscribers() > 0) {
     cv::Mat canvas = toDisplayBgr(image, format);

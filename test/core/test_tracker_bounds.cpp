@@ -100,20 +100,27 @@ TEST(RegionLoadMonitor, ReportsOverloadedClassesPerWindowAndEachFirstTimeOnce) {
             "frames are counted in diagnostics");
 }
 
-// The reference: every (track, region) pair scored, as the tracker did before the grid.
+// The reference: every (track, region) pair scored and sorted, the tracker's code from before
+// the grid (BlobTracker::scoreCandidates), copied word for word but for the tie order.
 std::vector<TrackPairing> allPairings(const std::vector<TrackGate>& tracks, const std::vector<Region>& regions,
                                       double max_area_ratio) {
+  std::vector<TrackPairing> candidates;
   const double log_max_ratio = std::log(std::max(max_area_ratio, 1.0 + 1e-9));
-  std::vector<TrackPairing> pairings;
-  for (int t = 0; t < static_cast<int>(tracks.size()); ++t)
+  for (int t = 0; t < static_cast<int>(tracks.size()); ++t) {
+    const TrackGate& track = tracks[t];
+    const double px = track.x, py = track.y, gate = track.gate_px;
     for (int r = 0; r < static_cast<int>(regions.size()); ++r) {
-      double cost;
-      if (scorePairing(tracks[t], regions[r], std::log(static_cast<double>(regions[r].area)), log_max_ratio, &cost)) {
-        pairings.push_back({cost, t, r});
-      }
+      const Region& region = regions[r];
+      if (region.label != track.label) continue;
+      const double distance = std::hypot(region.cx - px, region.cy - py);
+      if (distance > gate) continue;
+      const double log_ratio = std::fabs(std::log(static_cast<double>(region.area) / track.area));
+      if (log_ratio > log_max_ratio) continue;
+      candidates.push_back({distance / gate + 0.5 * log_ratio / log_max_ratio, t, r});
     }
-  std::sort(pairings.begin(), pairings.end(), cheaperPairing);
-  return pairings;
+  }
+  std::sort(candidates.begin(), candidates.end(), cheaperPairing);
+  return candidates;
 }
 
 // The reference assignment: every pair in order, taken when its track and region are free.
@@ -149,14 +156,16 @@ TEST(TrackAssociator, PairsExactlyAsScoringAndSortingEveryPairDoes) {
     const int track_count = trial < 30 ? 1 + trial : 300, region_count = trial < 30 ? 2 * trial : 3000;
     std::vector<TrackGate> tracks;
     for (int t = 0; t < track_count; ++t)
-      tracks.push_back({label(rng), x(rng), y(rng), gate(rng), std::log(static_cast<double>(area(rng)))});
+      tracks.push_back({label(rng), x(rng), y(rng), 1 + gate(rng), static_cast<uint32_t>(area(rng))});
     std::vector<Region> regions;
     for (int r = 0; r < region_count; ++r) regions.push_back(region(label(rng), area(rng), x(rng), y(rng)));
-    // A region exactly on a gate's edge, one track exactly on a region, two tracks alike.
-    if (!regions.empty() && track_count > 1) {
+    // A region exactly on a gate's edge, one exactly 4x a track's area (the ratio limit), one
+    // track exactly on a region, two tracks alike.
+    if (region_count > 1 && track_count > 1) {
       regions[0].cx = tracks[0].x + tracks[0].gate_px;
       regions[0].cy = tracks[0].y;
       regions[0].label = tracks[0].label;
+      regions[1] = region(tracks[0].label, 4 * tracks[0].area, tracks[0].x + 1, tracks[0].y);
       tracks.back().x = regions.back().cx, tracks.back().y = regions.back().cy;
       tracks[1] = tracks[0];
     }
@@ -172,13 +181,27 @@ TEST(TrackAssociator, PairsExactlyAsScoringAndSortingEveryPairDoes) {
 
 TEST(TrackAssociator, EqualCostsGoToTheLowerTrackThenTheLowerRegion) {
   // Two tracks equally far from two regions: the result must not depend on the search order.
-  const std::vector<TrackGate> tracks = {{1, 10, 0, 48, std::log(100.0)}, {1, -10, 0, 48, std::log(100.0)}};
+  const std::vector<TrackGate> tracks = {{1, 10, 0, 48, 100}, {1, -10, 0, 48, 100}};
   const std::vector<Region> regions = {region(1, 100, 0, 10), region(1, 100, 0, -10)};
   TrackAssociator associator;
   std::vector<int> region_track;
   associator.associate(tracks, regions, 4.0, 48.0, &region_track);
   EXPECT_EQ(region_track, (std::vector<int>{0, 1}));
   EXPECT_EQ(associator.pairings().size(), 4u);
+}
+
+TEST(BlobTracker, AnAreaChangeOfExactlyTheRatioLimitStillMatches) {
+  // |log(100 / 25)| is exactly log(4); log(100) - log(25) would be one rounding step above.
+  TrackerOptions options;
+  options.limits.min_track_area_px = 1;
+  std::vector<TrackedBlob> blobs;
+  for (const uint32_t area : {6u, 25u, 8u}) {
+    BlobTracker tracker(options);
+    tracker.update({region(1, area, 50, 50)}, 0.0, &blobs);
+    const uint32_t id = blobs.at(0).id;
+    tracker.update({region(1, 4 * area, 50, 50)}, 1.0 / 30, &blobs);
+    EXPECT_EQ(blobs.at(0).id, id) << area << " px to " << 4 * area << " px";
+  }
 }
 
 TEST(BlobTracker, AVeryNoisyFrameIsTrackedWithinItsLimits) {
