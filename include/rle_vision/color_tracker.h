@@ -30,8 +30,6 @@ class ColorTracker {
 
   // The last frame's regions per label (1 + class index), of any size.
   const std::vector<uint32_t>& regionCounts() const { return segmenter_.regionCounts(); }
-  // The last frame's regions per label of tracking size, and tracked.
-  const std::vector<ClassRegionCount>& trackedCounts() const { return tracker_.regionCounts(); }
   const BlobTracker& tracker() const { return tracker_; }
   // The regions made: those of tracking size. The blobs are these, in order, unless a class
   // had more than max_regions_per_class (then only its largest are blobs).

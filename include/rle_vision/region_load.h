@@ -28,11 +28,10 @@ struct RegionLoadReport {
 
 class RegionLoadMonitor {
  public:
-  // `regions`: every region per label (Segmenter::regionCounts()); `tracked`: the tracker's
-  // (BlobTracker::regionCounts()). Returns the labels overloaded for the first time since
-  // start (to be logged once each).
-  std::vector<int> addFrame(const std::vector<uint32_t>& regions, const std::vector<ClassRegionCount>& tracked,
-                            uint32_t max_regions_per_class);
+  // `regions`: every region per label (Segmenter::regionCounts()); `tracked`: the frame's
+  // blobs. Returns the labels overloaded for the first time since start (to be logged once
+  // each).
+  std::vector<int> addFrame(const std::vector<uint32_t>& regions, uint32_t tracked, uint32_t max_regions_per_class);
   // What happened since the last call.
   RegionLoadReport takeReport();
 

@@ -42,7 +42,6 @@ class RegionSelector {
     uint32_t ties_left = 0;
   };
   std::vector<ClassRegionCount> counts_;
-  std::vector<uint32_t> trackable_;  // per label: regions of tracking size
   std::vector<Cut> cuts_;
   std::vector<uint32_t> areas_;
 };

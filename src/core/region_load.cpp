@@ -4,14 +4,13 @@
 
 namespace rle_vision {
 
-std::vector<int> RegionLoadMonitor::addFrame(const std::vector<uint32_t>& regions,
-                                             const std::vector<ClassRegionCount>& tracked,
+std::vector<int> RegionLoadMonitor::addFrame(const std::vector<uint32_t>& regions, uint32_t tracked,
                                              uint32_t max_regions_per_class) {
   std::vector<int> first_time;
   std::lock_guard<std::mutex> lock(mutex_);
   if (loads_.size() < regions.size()) loads_.resize(regions.size());
-  last_frame_.regions = last_frame_.tracked = 0;
-  for (const ClassRegionCount& count : tracked) last_frame_.tracked += count.tracked;
+  last_frame_.regions = 0;
+  last_frame_.tracked = tracked;
   for (size_t label = 0; label < regions.size(); ++label) {
     last_frame_.regions += regions[label];
     if (regions[label] <= max_regions_per_class) continue;

@@ -12,20 +12,18 @@ void RegionSelector::select(const std::vector<Region>& regions, const RegionLimi
   int max_label = 0;
   for (const Region& r : regions) max_label = std::max(max_label, r.label);
   counts_.assign(static_cast<size_t>(max_label) + 1, ClassRegionCount());
-  trackable_.assign(counts_.size(), 0);
   cuts_.assign(counts_.size(), Cut());
   auto trackable = [&](const Region& r) { return r.label >= 0 && r.area >= limits.min_track_area_px; };
   for (const Region& r : regions) {
-    if (trackable(r)) ++trackable_[r.label];
+    if (trackable(r)) ++counts_[r.label].trackable;
   }
   // An overloaded class keeps its `limit` largest regions: find the area at the cut (linear
   // time) and how many regions of exactly that area still fit.
   const uint32_t limit = limits.max_regions_per_class;
   for (int label = 0; label <= max_label; ++label) {
     ClassRegionCount& count = counts_[label];
-    count.trackable = trackable_[label];
-    count.tracked = std::min(trackable_[label], limit);
-    if (trackable_[label] <= limit) continue;
+    count.tracked = std::min(count.trackable, limit);
+    if (count.trackable <= limit) continue;
     Cut& cut = cuts_[label];
     if (limit == 0) {
       cut.area = UINT32_MAX;
@@ -41,7 +39,7 @@ void RegionSelector::select(const std::vector<Region>& regions, const RegionLimi
   }
   for (const Region& r : regions) {
     if (!trackable(r)) continue;
-    if (trackable_[r.label] > limit) {
+    if (counts_[r.label].trackable > limit) {
       Cut& cut = cuts_[r.label];
       if (r.area < cut.area) continue;
       if (r.area == cut.area) {

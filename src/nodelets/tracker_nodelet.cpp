@@ -289,7 +289,8 @@ void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
   // Overloaded classes are logged once, then counted for diagnostics.
   const RegionLimits& limits = color_tracker_.tracker().options().limits;
   const std::string overload = firstOverloadLog(
-      region_load_.addFrame(color_tracker_.regionCounts(), color_tracker_.trackedCounts(), limits.max_regions_per_class),
+      region_load_.addFrame(color_tracker_.regionCounts(), static_cast<uint32_t>(blobs_.size()),
+                            limits.max_regions_per_class),
       color_tracker_.regionCounts(), *table, limits);
   if (!overload.empty()) NODELET_WARN("%s", overload.c_str());
 

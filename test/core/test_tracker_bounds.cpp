@@ -73,7 +73,7 @@ TEST(RegionSelector, AClassOverTheLimitKeepsItsLargestRegionsOthersAreUntouched)
 TEST(RegionLoadMonitor, ReportsOverloadedClassesPerWindowAndEachFirstTimeOnce) {
   RegionLoadMonitor monitor;
   std::vector<uint32_t> regions = {0, 12, 900};
-  std::vector<ClassRegionCount> tracked = {{}, {3, 3}, {40, 40}};
+  const uint32_t tracked = 43;  // the frame's blobs
   EXPECT_EQ(monitor.addFrame(regions, tracked, 500), std::vector<int>{2});
   regions[2] = 1200;
   EXPECT_TRUE(monitor.addFrame(regions, tracked, 500).empty());  // logged once, not every frame
