@@ -28,7 +28,7 @@ class ByStamp:
         self.lock = threading.Lock()
         self.messages = {}
         self.last = None
-        rospy.Subscriber(topic, msg_type, self.callback, queue_size=50)
+        self.sub = rospy.Subscriber(topic, msg_type, self.callback, queue_size=50)
 
     def callback(self, msg):
         with self.lock:
@@ -99,11 +99,17 @@ class SequenceEqualsNodeletsTest(unittest.TestCase):
         learned = ByStamp('/camera/color_ranges', ColorRangeArray)
         active = ByStamp('/camera/tracker/active_color_ranges', ColorRangeArray)
         image_pub = rospy.Publisher('/camera/image_raw', Image, queue_size=5)
-        # Every nodelet (tracker, edge detector, landmark: separate processes) subscribed.
+        # One manager, as pipeline.launch runs by default: the landmark gets each colour image
+        # in-process, before its edges exist (from other processes a colour image more than
+        # 0.1 s late, as a loaded machine makes it now and then, leaves the frame without colour
+        # learning). The nodelets subscribe once their outputs are listened to, all through
+        # the manager's one connection to the image topic.
+        outputs = (blobs, horizon, learned, active)
         deadline = time.time() + 30
-        while time.time() < deadline and image_pub.get_num_connections() < 3:
+        while time.time() < deadline and (image_pub.get_num_connections() < 1 or
+                                          any(o.sub.get_num_connections() < 1 for o in outputs)):
             time.sleep(0.1)
-        self.assertGreaterEqual(image_pub.get_num_connections(), 3)
+        self.assertGreaterEqual(image_pub.get_num_connections(), 1)
         time.sleep(1.0)
 
         in_use = []
