@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the ROS-free core (src/core, plain CMake) and its unit tests with AddressSanitizer and
-# UndefinedBehaviorSanitizer in a git-ignored build folder (.ws-asan), runs them, and prints
+# UndefinedBehaviorSanitizer in a git-ignored build folder (.ws-asan), runs them, then runs the
+# whole demo pipeline built with ASan (scripts/test_asan_pipeline.sh), and prints
 # "N passed, M failed". Any sanitizer report fails the run.
 set -uo pipefail
 source "$(dirname "$0")/env.sh"
@@ -20,4 +21,6 @@ extra=()
 if ! "$BUILD/test_core" --gtest_output="xml:$results/test_core_asan.xml"; then
   extra+=("test_core under ASan/UBSan exited with an error (see the report above)")
 fi
+# The running pipeline (every nodelet) under ASan, on a busy machine.
+JUNIT_DIR="$results" "$ROOT/scripts/test_asan_pipeline.sh" || true
 exec python3 "$ROOT/scripts/summarize_tests.py" "$results" "${extra[@]}"

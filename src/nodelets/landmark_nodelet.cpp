@@ -61,7 +61,9 @@ class LandmarkNodelet : public nodelet::Nodelet {
   Settings settings();
   void process(const sensor_msgs::ImageConstPtr& edges_msg);
   bool viewEdges(const sensor_msgs::ImageConstPtr& msg, cv::Mat* edges);
-  cv::Mat colourImage(const sensor_msgs::Image& edges_msg, const cv::Size& size);
+  // The colour image of the edge image's stamp, as BGR. A view into *colour_msg's data when it
+  // already is BGR: the caller keeps *colour_msg (the pixels) for as long as it uses the view.
+  cv::Mat colourImage(const sensor_msgs::Image& edges_msg, const cv::Size& size, sensor_msgs::ImageConstPtr* colour_msg);
   sensor_msgs::ImageConstPtr waitForColour(const ros::Time& stamp);
   bool camera(const cv::Size& size, PinholeCamera* camera);
   void noteMissingColour(const std_msgs::Header& header, const cv::Size& size);
@@ -73,6 +75,7 @@ class LandmarkNodelet : public nodelet::Nodelet {
 
   std::shared_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber sub_edges_, sub_image_;
+  std::string edges_topic_;  // for the worker's log messages: connectCb may replace sub_edges_
   ros::Subscriber sub_info_, sub_resume_;
   ros::Publisher pub_lines_, pub_horizon_, pub_markers_, pub_ranges_;
   image_transport::Publisher pub_debug_;
@@ -159,6 +162,7 @@ void LandmarkNodelet::onInit() {
 
 void LandmarkNodelet::advertiseAndSubscribe(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
   std::lock_guard<std::mutex> lock(connect_mutex_);
+  edges_topic_ = nh.resolveName("edges");
   const ros::SubscriberStatusCallback connect_cb = [this](const ros::SingleSubscriberPublisher&) { connectCb(); };
   const image_transport::SubscriberStatusCallback image_connect_cb =
       [this](const image_transport::SingleSubscriberPublisher&) { connectCb(); };
@@ -245,8 +249,10 @@ void LandmarkNodelet::process(const sensor_msgs::ImageConstPtr& msg) {
   const bool have_camera = camera(edges.size(), &camera_model);
   const Settings s = settings();
   // The colour image of this stamp (the horizon's region evidence); without it this frame has
-  // lines but no horizon.
-  const cv::Mat bgr = colourImage(*msg, edges.size());
+  // lines but no horizon. colour_msg holds its pixels: the cache drops its copy when newer
+  // images arrive, which they do while this idle-priority thread works.
+  sensor_msgs::ImageConstPtr colour_msg;
+  const cv::Mat bgr = colourImage(*msg, edges.size(), &colour_msg);
   if (bgr.empty()) noteMissingColour(msg->header, edges.size());
   LandmarkResult result;
   detector_.detect(bgr, edges, s.landmark, &result);
@@ -277,7 +283,7 @@ bool LandmarkNodelet::viewEdges(const sensor_msgs::ImageConstPtr& msg, cv::Mat* 
   }
   if (error.empty()) return true;
   if (input_errors_.shouldLog(error)) {
-    NODELET_ERROR("dropping edge image on %s: %s", sub_edges_.getTopic().c_str(), error.c_str());
+    NODELET_ERROR("dropping edge image on %s: %s", edges_topic_.c_str(), error.c_str());
   }
   return false;
 }
@@ -311,9 +317,10 @@ sensor_msgs::ImageConstPtr LandmarkNodelet::waitForColour(const ros::Time& stamp
   return same_stamp();
 }
 
-cv::Mat LandmarkNodelet::colourImage(const sensor_msgs::Image& edges_msg, const cv::Size& size) {
-  // The colour image of the edge image's stamp, as BGR (a view when it already is).
+cv::Mat LandmarkNodelet::colourImage(const sensor_msgs::Image& edges_msg, const cv::Size& size,
+                                     sensor_msgs::ImageConstPtr* colour_msg) {
   const sensor_msgs::ImageConstPtr colour = waitForColour(edges_msg.header.stamp);
+  *colour_msg = colour;
   if (!colour) return cv::Mat();
   PixelFormat format;
   cv::Mat view;
