@@ -7,6 +7,8 @@
 #include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
 
+#include "rle_vision/sensor_noise.h"
+
 namespace rle_vision {
 namespace {
 
@@ -478,13 +480,7 @@ void applySensor(const SceneConfig& config, uint64_t frame_index, SimFrame* fram
   }
   if (config.noise_sigma > 0) {
     // One reproducible noise field per (seed, frame).
-    cv::RNG rng(config.seed * 0x9E3779B97F4A7C15ull + frame_index + 1);
-    cv::Mat noise(config.height, config.width, CV_16SC3);
-    rng.fill(noise, cv::RNG::NORMAL, 0.0, config.noise_sigma);
-    cv::Mat wide;
-    frame->image.convertTo(wide, CV_16SC3);
-    wide += noise;
-    wide.convertTo(frame->image, CV_8UC3);
+    addGaussianNoise(config.noise_sigma, config.seed * 0x9E3779B97F4A7C15ull + frame_index + 1, &frame->image);
   }
 }
 

@@ -4,9 +4,11 @@
 
 #include "rle_vision/scene_file.h"
 #include "rle_vision/scene_simulator.h"
+#include "rle_vision/sensor_noise.h"
 #include "test_helpers.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace rle_vision {
 namespace {
@@ -130,6 +132,59 @@ TEST(SceneSimulator, NoiseHasTheConfiguredSigma) {
     EXPECT_NEAR(stddev[c], 5.0, 0.15);
     EXPECT_NEAR(mean[c], 0.0, 0.1);
   }
+}
+
+TEST(SensorNoise, TableIsTheRoundedGaussian) {
+  for (double sigma : {0.3, 2.0, 25.0, 60.0}) {
+    const std::vector<int16_t> table = roundedGaussianTable(sigma);
+    ASSERT_EQ(table.size(), 65536u);
+    EXPECT_TRUE(std::is_sorted(table.begin(), table.end()));
+    double sum = 0, sum_sq = 0;
+    for (int16_t v : table) {
+      sum += v;
+      sum_sq += double(v) * v;
+    }
+    const double mean = sum / table.size();
+    // The variance of round(N(0, sigma)), summed over whole levels; the cut tails take ~0.1%.
+    double variance = 0;
+    for (int k = 1; k <= 10 * sigma + 2; ++k) {
+      variance += 2.0 * k * k * 0.5 * (std::erfc((k - 0.5) / (sigma * M_SQRT2)) - std::erfc((k + 0.5) / (sigma * M_SQRT2)));
+    }
+    EXPECT_NEAR(mean, 0.0, 1e-3 * sigma + 1e-3) << sigma;
+    EXPECT_NEAR(std::sqrt(sum_sq / table.size() - mean * mean), std::sqrt(variance), 0.005 * sigma + 0.005) << sigma;
+    // Symmetric: entry i and entry 65535 - i are opposite values.
+    for (size_t i = 0; i < table.size(); i += 97) EXPECT_EQ(table[i], -table[table.size() - 1 - i]) << sigma;
+  }
+  EXPECT_THROW(roundedGaussianTable(0), std::invalid_argument);
+  EXPECT_THROW(roundedGaussianTable(std::nan("")), std::invalid_argument);
+}
+
+TEST(SensorNoise, SaturatesRepeatsForASeedAndIsUncorrelated) {
+  cv::Mat dark(120, 160, CV_8UC3, cv::Scalar(0, 128, 255)), a = dark.clone(), b = dark.clone(), c = dark.clone();
+  addGaussianNoise(20, 5, &a);
+  addGaussianNoise(20, 5, &b);
+  addGaussianNoise(20, 6, &c);
+  EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(a, c, cv::NORM_INF), 0.0);
+  std::vector<cv::Mat> channels;
+  cv::split(a, channels);
+  // Black can only get brighter and white darker: about half of each clips.
+  EXPECT_NEAR(cv::countNonZero(channels[0] == 0) / double(a.total()), 0.5, 0.03);
+  EXPECT_NEAR(cv::countNonZero(channels[2] == 255) / double(a.total()), 0.5, 0.03);
+  // Mid grey: neighbouring values (the four from one hash) and two seeds are uncorrelated.
+  cv::Mat grey_a, grey_c, left, right;
+  channels[1].convertTo(grey_a, CV_64F, 1, -128);
+  std::vector<cv::Mat> other;
+  cv::split(c, other);
+  other[1].convertTo(grey_c, CV_64F, 1, -128);
+  const double var = grey_a.dot(grey_a) / grey_a.total();
+  EXPECT_NEAR(std::sqrt(var), 20.0, 0.6);
+  EXPECT_LT(std::abs(grey_a.dot(grey_c) / grey_a.total() / var), 0.03);
+  left = grey_a.colRange(0, 159);
+  right = grey_a.colRange(1, 160);
+  EXPECT_LT(std::abs(left.dot(right) / left.total() / var), 0.03);
+  cv::Mat wide(4, 4, CV_16UC1);
+  EXPECT_THROW(addGaussianNoise(2, 1, &wide), std::invalid_argument);
 }
 
 TEST(SceneSimulator, GaitSwayAndLightingDrift) {
