@@ -4,9 +4,11 @@ reports the tracker's latency (image stamp to blobs publish, measured inside the
 read from its diagnostics: percentiles since start, and the window's share of frames over each
 bound, from two readings of the tracker's counts, so that start-up does not count), tracker
 frames dropped (simulator frames that never got blobs),
-landmark frames skipped by its one-slot mailbox, and CPU per node.
+landmark frames skipped by its one-slot mailbox, CPU per node, and the tracker's slowest frame
+in the window (wall-clock, from the blobs messages, and thread CPU time, from diagnostics).
 
-Usage: latency_probe.py LABEL SECONDS OUT_JSON   (appends one run to OUT_JSON's "runs")."""
+Usage: latency_probe.py LABEL SECONDS OUT_JSON [--no-landmark]   (appends one run to OUT_JSON's
+"runs"; --no-landmark: the pipeline runs the tracker alone)."""
 import json
 import os
 import sys
@@ -42,7 +44,8 @@ class Probe:
     def __init__(self):
         self.lock = threading.Lock()
         self.frames = []        # stamps of simulator frames
-        self.blob_stamps = set()
+        self.frame_ms = {}      # blobs stamp -> the tracker's processing_time_ms
+        self.cpu_max_ms = []    # (time, the tracker's 'processing cpu time max (ms)' of a report)
         self.status = {}        # node -> {key: value}, latest diagnostics
         rospy.Subscriber('/camera/ground_truth/scene', SceneTruth, self.on_truth, queue_size=1000)
         rospy.Subscriber('/camera/blobs', BlobArray, self.on_blobs, queue_size=1000)
@@ -54,7 +57,7 @@ class Probe:
 
     def on_blobs(self, msg):
         with self.lock:
-            self.blob_stamps.add(msg.header.stamp)
+            self.frame_ms[msg.header.stamp] = msg.processing_time_ms
 
     def on_diagnostics(self, msg):
         with self.lock:
@@ -62,6 +65,8 @@ class Probe:
                 for node in NODES:
                     if status.name.endswith(': ' + node):
                         self.status[node] = {kv.key: kv.value for kv in status.values}
+                        if node == 'tracker' and 'processing cpu time max (ms)' in self.status[node]:
+                            self.cpu_max_ms.append((time.time(), float(self.status[node]['processing cpu time max (ms)'])))
 
     def value(self, node, key, default=float('nan')):
         with self.lock:
@@ -101,10 +106,12 @@ def spread(runs):
 
 def main():
     label, seconds, out_path = sys.argv[1], float(sys.argv[2]), sys.argv[3]
+    with_landmark = '--no-landmark' not in sys.argv[4:]
     rospy.init_node('latency_probe')
     probe = Probe()
     deadline = time.time() + 60
-    while time.time() < deadline and not (probe.frames and 'tracker' in probe.status and 'landmark' in probe.status):
+    while time.time() < deadline and not (probe.frames and 'tracker' in probe.status and
+                                          ('landmark' in probe.status or not with_landmark)):
         time.sleep(0.2)
     time.sleep(3.0)  # the pipeline settles
     skips_start = probe.value('landmark', 'frames dropped (total)')
@@ -119,7 +126,10 @@ def main():
     time.sleep(1.5)  # the last frames' blobs and a fresh diagnostics report arrive
     cpu_manager = (process_cpu_seconds('/camera/vision_manager') - cpu_start) / (time.time() - 1.5 - wall_start)
     with probe.lock:
-        dropped = sum(1 for stamp in window if stamp not in probe.blob_stamps)
+        dropped = sum(1 for stamp in window if stamp not in probe.frame_ms)
+        frame_ms = [probe.frame_ms[stamp] for stamp in window if stamp in probe.frame_ms]
+        # Reports whose 1-s span lies inside the window.
+        cpu_max = [ms for t, ms in probe.cpu_max_ms if wall_start + 1.0 <= t <= wall_start + seconds]
     window_frames, share_over, p99_at_most = window_latency(latency_start, latency_counts(probe))
     run = {
         'label': label,
@@ -133,11 +143,14 @@ def main():
         'window_percent_over_ms': share_over,
         'window_p99_at_most_ms': p99_at_most,
         'tracker_drops': dropped,
-        'landmark_skips': int(probe.value('landmark', 'frames dropped (total)') - skips_start),
+        'landmark_skips': int(probe.value('landmark', 'frames dropped (total)') - skips_start) if with_landmark else None,
+        'tracker_frame_ms_max': max(frame_ms, default=float('nan')),
+        'tracker_frames_over_5ms': sum(1 for ms in frame_ms if ms > 5.0),
+        'tracker_cpu_ms_max': max(cpu_max, default=float('nan')),
         'cpu_percent_of_one_core': {node: round(probe.value(node, 'cpu load since start (% of one core)'), 1)
-                                    for node in NODES},
+                                    for node in NODES if node in probe.status},
         'cpu_percent_manager_process': round(100 * cpu_manager, 1),
-        'landmark_ms_mean': probe.value('landmark', 'processing time mean (ms)'),
+        'landmark_ms_mean': probe.value('landmark', 'processing time mean (ms)') if with_landmark else None,
         'tracker_ms_mean': probe.value('tracker', 'processing time mean (ms)'),
     }
     results = {'runs': []}
@@ -151,9 +164,10 @@ def main():
     with open(out_path, 'w') as f:
         json.dump(results, f, indent=2)
     print('%-18s %6d frames  latency p50 %.2f ms  p99 %.2f ms  max %.2f ms (since start); window: p99 <= %s ms, '
-          '%.2f%% over 2 ms  tracker drops %d  landmark skips %d'
+          '%.2f%% over 2 ms  tracker drops %d  landmark skips %s; slowest frame %.2f ms (CPU %.2f ms), %d over 5 ms'
           % (label, run['frames'], run['p50_ms'], run['p99_ms'], run['max_ms'], p99_at_most, share_over['2'],
-             run['tracker_drops'], run['landmark_skips']))
+             run['tracker_drops'], run['landmark_skips'], run['tracker_frame_ms_max'], run['tracker_cpu_ms_max'],
+             run['tracker_frames_over_5ms']))
     print('          CPU (% of one core): ' + ', '.join('%s %.1f' % kv for kv in run['cpu_percent_of_one_core'].items()) +
           '; manager process %.1f' % run['cpu_percent_manager_process'])
 

@@ -154,7 +154,9 @@ def write_junit(path, results):
             continue  # printed with its reason, not counted as passed
         inner = ''
         if failures:
-            inner = '<failure message=%s/>' % xml.sax.saxutils.quoteattr('\n'.join(failures))
+            # Terminal colour codes (ESC) and other control characters are not allowed in XML.
+            text = re.sub(r'[\x00-\x08\x0b\x0c\x0e-\x1f]', '', '\n'.join(failures))
+            inner = '<failure message=%s/>' % xml.sax.saxutils.quoteattr(text)
         cases.append('<testcase classname="readme" name=%s>%s</testcase>' % (xml.sax.saxutils.quoteattr(name), inner))
     os.makedirs(os.path.dirname(path), exist_ok=True)
     with open(path, 'w') as f:

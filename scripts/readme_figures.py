@@ -160,17 +160,23 @@ def latency():
     rows = []
     for r in d['runs']:
         config, _, repeat = r['label'].partition('#')
-        size, _, priority = config.partition('@')
-        how = '`realtime_priority:=0`' if priority == 'normal' else 'as launched (`realtime_priority` 50)'
+        size, _, how = config.partition('@')
+        how = {'normal': '`realtime_priority:=0`',
+               'overload': 'σ = 60 noise, `colors.txt`, tracker alone, as launched'}.get(how, 'as launched (`realtime_priority` 50)')
         cpu = r['cpu_percent_of_one_core']
         p99 = r.get('window_p99_at_most_ms')
+        slowest = ('%s / %s' % (ms(r['tracker_frame_ms_max']), ms(r['tracker_cpu_ms_max']))
+                   if 'tracker_frame_ms_max' in r else '')
         rows.append(['%s, %s, run %s' % (size, how, repeat or '1'), r['frames'], ms(r['p50_ms']), ms(r['p99_ms']),
                      ('**≤ %s ms**' % ('%g' % p99)) if p99 is not None else '> 5 ms',
                      '%.2f%%' % r['window_percent_over_ms']['2'] if 'window_percent_over_ms' in r else '',
-                     ms(r['max_ms']), r['tracker_drops'], r['landmark_skips'],
-                     '%.1f / %.1f / %.1f / %.1f' % (cpu['simulator'], cpu['tracker'], cpu['edge detector'], cpu['landmark'])])
+                     ms(r['max_ms']), slowest, r.get('tracker_frames_over_5ms', ''), r['tracker_drops'],
+                     '–' if r['landmark_skips'] is None else r['landmark_skips'],
+                     ' / '.join('%.1f' % cpu[n] if n in cpu else '–'
+                                for n in ('simulator', 'tracker', 'edge detector', 'landmark'))])
     return (table(['run', 'frames', 'p50 (since start)', 'p99 (since start)', 'p99 over the 60-s window',
-                   'window frames over 2 ms', 'max', 'tracker drops', 'landmark skips',
+                   'window frames over 2 ms', 'max', 'slowest frame in the window: wall-clock / CPU',
+                   'frames over 5 ms', 'tracker drops', 'landmark skips',
                    'CPU % of one core: simulator / tracker / edges / landmark'], rows) + '\n\n' +
             provenance('make bench-latency', 'latency', d))
 

@@ -11,16 +11,27 @@ import sys
 import xml.etree.ElementTree as ET
 
 
+def why(case):
+    """The first lines of a failed case's message, so a CI log says what broke."""
+    for tag in ('failure', 'error'):
+        node = case.find(tag)
+        if node is not None:
+            text = (node.text or node.get('message') or '').strip()
+            lines = [line.strip() for line in text.splitlines() if line.strip()]
+            return ' | '.join(lines[-3:])[:400]
+    return ''
+
+
 def cases(path):
     try:
         root = ET.parse(path).getroot()
     except ET.ParseError as e:
-        return [('%s (unreadable result file: %s)' % (os.path.basename(path), e), False)]
+        return [('%s (unreadable result file: %s)' % (os.path.basename(path), e), False, '')]
     out = []
     for case in root.iter('testcase'):
         failed = case.find('failure') is not None or case.find('error') is not None
         name = '%s.%s' % (case.get('classname', '?'), case.get('name', '?'))
-        out.append((name, not failed))
+        out.append((name, not failed, why(case) if failed else ''))
     return out
 
 
@@ -30,18 +41,18 @@ def main(results_dir, extra_failures):
     for path in files:
         base = os.path.basename(path)
         if base.startswith('rostest-'):
-            for name, ok in cases(path):
+            for name, ok, _ in cases(path):
                 test_name = name.rsplit('.', 1)[-1][len('test'):]
                 own = os.path.join(os.path.dirname(path), 'rosunit-%s.xml' % test_name)
-                own_failed = os.path.exists(own) and any(not ok2 for _, ok2 in cases(own))
+                own_failed = os.path.exists(own) and any(not ok2 for _, ok2, _ in cases(own))
                 if not ok and not own_failed:
                     failed.append('%s: %s (the test node crashed, timed out or wrote no results)' % (base, name))
             continue
-        for name, ok in cases(path):
+        for name, ok, reason in cases(path):
             if ok and not base.startswith('MISSING'):
                 passed += 1
             else:
-                failed.append('%s: %s' % (base, name))
+                failed.append('%s: %s%s' % (base, name, ('  (' + reason + ')') if reason else ''))
     failed += extra_failures
     if not files:
         failed.append('no test results found in %s' % results_dir)
