@@ -19,7 +19,9 @@ check() {
     tail -30 "$log"
     check_failed=$((check_failed + 1))
     local text
-    text=$(tail -30 "$log" | sed -e 's/&/\&amp;/g' -e 's/</\&lt;/g' -e 's/>/\&gt;/g' -e 's/"/\&quot;/g')
+    # Control characters (terminal colours) are not allowed in XML: dropped, tabs and newlines kept.
+    text=$(tail -30 "$log" | tr -d '\000-\010\013\014\016-\037' |
+           sed -e 's/&/\&amp;/g' -e 's/</\&lt;/g' -e 's/>/\&gt;/g' -e 's/"/\&quot;/g')
     check_cases+="<testcase classname=\"$CHECK_SUITE\" name=\"$name\"><failure message=\"$text\"/></testcase>"
   fi
 }

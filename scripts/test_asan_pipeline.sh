@@ -6,7 +6,7 @@
 # fails on any sanitizer report or a process that died. The load matters: the landmark worker
 # runs at idle priority, so only a busy machine makes it lag its colour-image cache, and that is
 # when a frame's pixels can be freed under it (the use-after-free this found).
-# Writes a JUnit result to $JUNIT_DIR/asan_pipeline.xml when JUNIT_DIR is set.
+# One test case (scripts/checks.sh): a JUnit result in $JUNIT_DIR/asan_pipeline.xml when JUNIT_DIR is set.
 set -uo pipefail
 source "$(dirname "$0")/env.sh"
 ASAN_WS="${ASAN_WS:-$ROOT/.ws-asan-ros}"
@@ -17,16 +17,16 @@ ln -sfn "$ROOT" "$ASAN_WS/src/rle_vision"
 logs="$ASAN_WS/logs"
 rm -rf "$logs" && mkdir -p "$logs"
 
-failure=""
-if ! (cd "$ASAN_WS" && catkin_make -j"${JOBS:-2}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-      -DCMAKE_CXX_FLAGS="-fsanitize=address -fno-omit-frame-pointer" -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address" \
-      -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address" -DRLE_VISION_BUILD_BENCHMARKS=OFF -DCATKIN_ENABLE_TESTING=OFF) \
-      >"$logs/build.log" 2>&1; then
-  tail -40 "$logs/build.log"
-  failure="building the package with AddressSanitizer failed (log: $logs/build.log)"
-fi
-
-if [[ -z "$failure" ]]; then
+# One test case: build, run under load, read the logs. Prints why it failed.
+demo_pipeline_under_load() {
+  if ! (cd "$ASAN_WS" && catkin_make -j"${JOBS:-2}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        -DCMAKE_CXX_FLAGS="-fsanitize=address -fno-omit-frame-pointer" -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address" \
+        -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address" -DRLE_VISION_BUILD_BENCHMARKS=OFF -DCATKIN_ENABLE_TESTING=OFF) \
+        >"$logs/build.log" 2>&1; then
+    tail -40 "$logs/build.log"
+    echo "building the package with AddressSanitizer failed (log: $logs/build.log)"
+    return 1
+  fi
   (
     set +u
     source "$ASAN_WS/devel/setup.bash"
@@ -38,9 +38,9 @@ if [[ -z "$failure" ]]; then
     LD_PRELOAD="$libasan" exec roslaunch --no-summary rle_vision demo.launch rviz:=false realtime_priority:=0 \
       duration_s:=$((seconds + 15))
   ) >"$logs/demo.log" 2>&1 &
-  demo=$!
+  local demo=$!
   sleep 10
-  busy=()
+  local busy=()
   for _ in 1 2; do
     (while :; do :; done) &
     busy+=($!)
@@ -48,34 +48,26 @@ if [[ -z "$failure" ]]; then
   sleep "$seconds"
   kill "${busy[@]}" 2>/dev/null
   wait "$demo" 2>/dev/null
+  local reports
   reports=$(ls "$logs"/asan.* 2>/dev/null || true)
   if [[ -n "$reports" ]]; then
     for report in $reports; do head -30 "$report"; done
-    failure="AddressSanitizer reported an error in the running pipeline ($reports)"
+    echo "AddressSanitizer reported an error in the running pipeline ($reports)"
+    return 1
   elif grep -q "process has died" "$logs/demo.log"; then
     grep "process has died" "$logs/demo.log"
-    failure="a process died in the running pipeline (log: $logs/demo.log)"
+    echo "a process died in the running pipeline (log: $logs/demo.log)"
+    return 1
   elif ! grep -q "blobs: " "$logs/demo.log"; then
     tail -20 "$logs/demo.log"
-    failure="the pipeline under AddressSanitizer gave no blobs (log: $logs/demo.log)"
+    echo "the pipeline under AddressSanitizer gave no blobs (log: $logs/demo.log)"
+    return 1
   fi
-fi
+  echo "the demo pipeline ran ${seconds} s under load with no sanitizer report"
+}
 
-if [[ -n "${JUNIT_DIR:-}" ]]; then
-  mkdir -p "$JUNIT_DIR"
-  python3 - "$JUNIT_DIR/asan_pipeline.xml" "$failure" <<'EOF'
-import sys
-from xml.sax.saxutils import quoteattr
-path, failure = sys.argv[1], sys.argv[2]
-inner = '<failure message=%s/>' % quoteattr(failure) if failure else ''
-with open(path, 'w') as f:
-    f.write('<?xml version="1.0" encoding="UTF-8"?>\n<testsuite name="asan_pipeline" tests="1" failures="%d">'
-            '<testcase classname="asan" name="demo_pipeline_under_load">%s</testcase></testsuite>\n'
-            % (1 if failure else 0, inner))
-EOF
-fi
-if [[ -n "$failure" ]]; then
-  echo "[asan-pipeline] FAILED: $failure"
-  exit 1
-fi
-echo "[asan-pipeline] the demo pipeline ran ${seconds} s under load with no sanitizer report"
+CHECK_SUITE=asan_pipeline
+CHECK_LOG_DIR="$logs"
+source "$(dirname "$0")/checks.sh"
+check demo_pipeline_under_load demo_pipeline_under_load
+finish_checks
