@@ -129,6 +129,7 @@ class SceneSimulator {
   SceneConfig config_;
   PinholeCamera camera_;
   std::vector<float> texture_lattice_;  // the ground texture's random values, kTextureLattice^2
+  std::vector<int16_t> noise_table_;    // roundedGaussianTable(noise_sigma); empty without noise
 };
 
 // Reason the configuration is unusable, or "" when it is fine.

@@ -18,5 +18,8 @@ std::vector<int16_t> roundedGaussianTable(double sigma);
 // hash (four values per hash), a few times cheaper than cv::RNG's normal fill plus the int16
 // round trip, so the simulator's camera keeps 30 Hz with room left for the pipeline.
 void addGaussianNoise(double sigma, uint64_t seed, cv::Mat* image);
+// The same with the table of roundedGaussianTable(sigma) built once by the caller (a camera
+// adds noise of one sigma to every frame). Throws std::invalid_argument for another table size.
+void addGaussianNoise(const std::vector<int16_t>& rounded_gaussian_table, uint64_t seed, cv::Mat* image);
 
 }  // namespace rle_vision

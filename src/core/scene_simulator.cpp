@@ -124,7 +124,7 @@ std::string validateSceneConfig(const SceneConfig& c) {
       return "light casts must be finite and >= 0";
     }
   }
-  if (c.noise_sigma < 0) return "noise sigma must be >= 0";
+  if (c.noise_sigma < 0 || c.noise_sigma > 1000) return "noise sigma must be in [0, 1000] levels";
   if (!finite(c.ground_texture_contrast) || c.ground_texture_contrast < 0 || c.ground_texture_contrast > 1) {
     return "ground_texture contrast must be in [0, 1]";
   }
@@ -153,6 +153,7 @@ SceneSimulator::SceneSimulator(const SceneConfig& config) : config_(config) {
   cv::RNG rng(config_.seed * 0x2545F4914F6CDD1Dull + 1);
   texture_lattice_.resize(kTextureLattice * kTextureLattice);
   for (float& value : texture_lattice_) value = rng.uniform(-1.0f, 1.0f);
+  if (config_.noise_sigma > 0) noise_table_ = roundedGaussianTable(config_.noise_sigma);
 }
 
 CameraPose SceneSimulator::poseAt(double t) const {
@@ -473,14 +474,15 @@ void boxTruth(const SceneConfig& config, const std::vector<Eigen::Vector2d>& pos
 }
 
 // Lens blur and sensor noise.
-void applySensor(const SceneConfig& config, uint64_t frame_index, SimFrame* frame) {
+void applySensor(const SceneConfig& config, const std::vector<int16_t>& noise_table, uint64_t frame_index,
+                 SimFrame* frame) {
   if (config.blur_sigma_px > 0) {
     cv::GaussianBlur(frame->image, frame->image, cv::Size(), config.blur_sigma_px, config.blur_sigma_px,
                      cv::BORDER_REPLICATE);
   }
   if (config.noise_sigma > 0) {
     // One reproducible noise field per (seed, frame).
-    addGaussianNoise(config.noise_sigma, config.seed * 0x9E3779B97F4A7C15ull + frame_index + 1, &frame->image);
+    addGaussianNoise(noise_table, config.seed * 0x9E3779B97F4A7C15ull + frame_index + 1, &frame->image);
   }
 }
 
@@ -510,7 +512,7 @@ SimFrame SceneSimulator::render(uint64_t frame_index, double t) const {
   paintBoxes(config_, camera_, view, light, positions, &frame, &candidate_edges);
   edgeTruth(candidate_edges, &frame);
   boxTruth(config_, positions, &frame);
-  applySensor(config_, frame_index, &frame);
+  applySensor(config_, noise_table_, frame_index, &frame);
   return frame;
 }
 

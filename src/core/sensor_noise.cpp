@@ -39,7 +39,12 @@ std::vector<int16_t> roundedGaussianTable(double sigma) {
 void addGaussianNoise(double sigma, uint64_t seed, cv::Mat* image) {
   if (image->depth() != CV_8U) throw std::invalid_argument("addGaussianNoise needs an 8-bit image");
   if (sigma == 0 || image->empty()) return;
-  const std::vector<int16_t> table = roundedGaussianTable(sigma);
+  addGaussianNoise(roundedGaussianTable(sigma), seed, image);
+}
+
+void addGaussianNoise(const std::vector<int16_t>& table, uint64_t seed, cv::Mat* image) {
+  if (image->depth() != CV_8U) throw std::invalid_argument("addGaussianNoise needs an 8-bit image");
+  if (table.size() != kTableSize) throw std::invalid_argument("addGaussianNoise needs a roundedGaussianTable");
   const int values_per_row = image->cols * image->channels();
   uint64_t state = seed;
   for (int y = 0; y < image->rows; ++y) {

@@ -185,6 +185,11 @@ TEST(SensorNoise, SaturatesRepeatsForASeedAndIsUncorrelated) {
   EXPECT_LT(std::abs(left.dot(right) / left.total() / var), 0.03);
   cv::Mat wide(4, 4, CV_16UC1);
   EXPECT_THROW(addGaussianNoise(2, 1, &wide), std::invalid_argument);
+  // A table built once (as the simulator does) gives the same noise; a table of another size is refused.
+  cv::Mat d = dark.clone();
+  addGaussianNoise(roundedGaussianTable(20), 5, &d);
+  EXPECT_EQ(cv::norm(a, d, cv::NORM_INF), 0.0);
+  EXPECT_THROW(addGaussianNoise(std::vector<int16_t>(100, 0), 5, &d), std::invalid_argument);
 }
 
 TEST(SceneSimulator, GaitSwayAndLightingDrift) {
