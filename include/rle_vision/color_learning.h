@@ -83,6 +83,7 @@ class ColorLearner {
     kOverlapsGround, // the class's range would overlap the ground's colour
     kOverlapsSky,    // ... the sky's
     kOverlapsClass,  // ... another class's (conflicting_class)
+    kTakesInBackground,  // the pixels the range would add lie mostly away from the measured objects
   };
   // What the last update saw, for tests and debug views: one colour mode of one region
   // bounded by lines, or (from_blob) one blob of a class.
@@ -132,12 +133,15 @@ class ColorLearner {
   void measureMode(const cv::Mat& bgr, const RegionPixels& pixels, const std::vector<int>& mode,
                    const HorizonEstimate& horizon, const Spaces& spaces, Measurement* m);
   void measureBlobs(const cv::Mat& bgr, const HorizonEstimate& horizon, std::vector<std::vector<ColorStats>>* matched);
-  void measureBlob(const cv::Mat& bgr, const Region& region, const HorizonEstimate& horizon, Measurement* m);
+  void measureBlob(const cv::Mat& bgr, const Region& region, const HorizonEstimate& horizon, Measurement* m,
+                   std::vector<Channels>* pixels);
   void blobPixels(const cv::Mat& bgr, const Region& region, int k, std::vector<Channels>* pixels) const;
   int nearestClass(const Measurement& m) const;
   double distanceToClass(int k, const ColorStats& measured) const;
+  bool mostlyInRange(int k, const std::vector<Channels>& colours) const;
   void applyMatched(const std::vector<std::vector<ColorStats>>& matched, double stamp_s);
   Rejection apply(int k, const ColorStats& measured, double stamp_s, int* conflicting_class);
+  bool takesInBackground(int k, const ColorStats& blended);
   bool driftBack(double stamp_s);
   void createClasses(double stamp_s);
   void addClass(const Candidate& candidate, double stamp_s);
@@ -153,6 +157,11 @@ class ColorLearner {
   std::vector<Measurement> measurements_;
   bool have_ground_[kNumColorSpaces] = {false, false, false}, have_sky_[kNumColorSpaces] = {false, false, false};
   ColorStats ground_[kNumColorSpaces], sky_[kNumColorSpaces];
+  // This update's frame (for the background gate, converted to a space when first needed) and,
+  // per class, where its applied measurements lie (blobs with their ring, modes' pixels).
+  const cv::Mat* frame_bgr_ = nullptr;
+  cv::Mat frame_in_space_[kNumColorSpaces];
+  std::vector<std::vector<cv::Rect>> measured_boxes_;
   int created_ = 0;
   // from_blobs: the current classes' blobs, segmented here as the tracker does.
   std::unique_ptr<ColorTable> blob_table_;  // built from classes_; null when they changed

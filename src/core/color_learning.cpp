@@ -264,7 +264,40 @@ void ColorLearner::reject(Measurement* m, Rejection why, int conflicting_class) 
     case Rejection::kOverlapsClass:
       m->rejected = "the range would overlap class '" + configured_[conflicting_class].name + "'";
       break;
+    case Rejection::kTakesInBackground:
+      m->rejected = "the range would take in more pixels away from its objects than on them";
+      break;
   }
+}
+
+bool ColorLearner::takesInBackground(int k, const ColorStats& blended) {
+  // The pixels of this frame the new range would add to the current one: an object that
+  // changed colour adds its own (near where it was measured), a range creeping into the
+  // background adds pixels elsewhere. Refused when most lie away from the measured objects.
+  if (!frame_bgr_ || frame_bgr_->empty()) return false;
+  const int s = static_cast<int>(configured_[k].space);
+  if (frame_in_space_[s].empty()) frame_in_space_[s] = convertBgrImage(*frame_bgr_, configured_[k].space);
+  const cv::Mat& image = frame_in_space_[s];
+  Channels lo, hi;
+  for (int ch = 0; ch < 3; ++ch) {
+    lo[ch] = saturateToByte(static_cast<int>(std::floor(state_[k].lo[ch])));
+    hi[ch] = saturateToByte(static_cast<int>(std::ceil(state_[k].hi[ch])));
+  }
+  cv::Mat near_objects = cv::Mat::zeros(image.size(), CV_8UC1);
+  for (const cv::Rect& box : measured_boxes_[k]) near_objects(box & cv::Rect(0, 0, image.cols, image.rows)).setTo(1);
+  auto in = [](const cv::Vec3b& p, const Channels& a, const Channels& b) {
+    return p[0] >= a[0] && p[0] <= b[0] && p[1] >= a[1] && p[1] <= b[1] && p[2] >= a[2] && p[2] <= b[2];
+  };
+  size_t added_near = 0, added_away = 0;
+  for (int y = 0; y < image.rows; ++y) {
+    const cv::Vec3b* p = image.ptr<cv::Vec3b>(y);
+    const uint8_t* near = near_objects.ptr<uint8_t>(y);
+    for (int x = 0; x < image.cols; ++x) {
+      if (!in(p[x], blended.lo, blended.hi) || in(p[x], lo, hi)) continue;
+      (near[x] ? added_near : added_away) += 1;
+    }
+  }
+  return added_away > added_near;
 }
 
 ColorLearner::Rejection ColorLearner::apply(int k, const ColorStats& measured, double stamp_s, int* conflicting_class) {
@@ -299,6 +332,8 @@ ColorLearner::Rejection ColorLearner::apply(int k, const ColorStats& measured, d
       return Rejection::kOverlapsClass;
     }
   }
+  // Nor over whatever else the frame holds (without a horizon there is no sky to compare).
+  if (takesInBackground(k, blended)) return Rejection::kTakesInBackground;
   next.last_measured_s = stamp_s;
   state_[k] = next;
   return Rejection::kNone;
@@ -329,6 +364,9 @@ bool ColorLearner::update(const cv::Mat& bgr, const LandmarkResult& landmarks, c
                           double stamp_s) {
   measurements_.clear();
   if (bgr.empty() || bgr.type() != CV_8UC3) return false;
+  frame_bgr_ = &bgr;
+  for (cv::Mat& converted : frame_in_space_) converted.release();
+  measured_boxes_.assign(configured_.size(), {});
   const cv::Rect image(0, 0, bgr.cols, bgr.rows);
   // The background away from every edge object.
   std::vector<cv::Rect> object_boxes;
@@ -344,6 +382,7 @@ bool ColorLearner::update(const cv::Mat& bgr, const LandmarkResult& landmarks, c
   for (const auto& entry : by_object) measureRegion(bgr, entry.second, landmarks.horizon, spaces, &matched);
   if (options_.from_blobs) measureBlobs(bgr, landmarks.horizon, &matched);
   applyMatched(matched, stamp_s);
+  frame_bgr_ = nullptr;
   driftBack(stamp_s);
   if (options_.create_classes) createClasses(stamp_s);
   return updateClassSet();
@@ -397,7 +436,12 @@ void ColorLearner::measureRegion(const cv::Mat& bgr, const std::vector<const Det
   for (const std::vector<int>& mode : colorModes(pixels.yuv, options_.mode_radius, options_.min_region_px)) {
     Measurement mm = m;
     measureMode(bgr, pixels, mode, horizon, spaces, &mm);
-    if (mm.matched_class >= 0) (*matched)[mm.matched_class].push_back(mm.stats[static_cast<int>(configured_[mm.matched_class].space)]);
+    if (mm.matched_class >= 0) {
+      (*matched)[mm.matched_class].push_back(mm.stats[static_cast<int>(configured_[mm.matched_class].space)]);
+      const int pad = static_cast<int>(std::ceil(options_.shrink_px)) + 1;  // the eroded rim
+      const cv::Rect& b = mm.pixels_box;
+      measured_boxes_[mm.matched_class].push_back(cv::Rect(b.x - pad, b.y - pad, b.width + 2 * pad, b.height + 2 * pad));
+    }
     measurements_.push_back(mm);
   }
 }
@@ -413,10 +457,10 @@ void ColorLearner::measureMode(const cv::Mat& bgr, const RegionPixels& pixels, c
     return reject(m, Rejection::kAboveHorizon);
   }
   bool consistent = true;
-  std::vector<Channels> colours;
+  std::vector<Channels> colours_in_space[kNumColorSpaces];
   for (int s = 0; s < kNumColorSpaces; ++s) {
     if (!spaces.used[s]) continue;
-    colours.clear();
+    std::vector<Channels>& colours = colours_in_space[s];
     if (s == static_cast<int>(ColorSpace::YUV)) {
       for (int i : mode) colours.push_back(pixels.yuv[i]);
     } else {
@@ -433,7 +477,12 @@ void ColorLearner::measureMode(const cv::Mat& bgr, const RegionPixels& pixels, c
   }
   if (!consistent) return reject(m, Rejection::kMixedColours);
   const int k = nearestClass(*m);
-  if (k < 0) return reject(m, Rejection::kNoClass);
+  // The class must already hold most of the mode: learning follows an object the tracker
+  // sees as this class while its colour drifts; a colour beside the class (a white line next
+  // to a cream ball's range) would otherwise pull the range over itself, step by step.
+  if (k < 0 || !mostlyInRange(k, colours_in_space[static_cast<int>(configured_[k].space)])) {
+    return reject(m, Rejection::kNoClass);
+  }
   // A mode of the ground's or the sky's colour is background between boxes, not an object.
   if (isBackground(configured_[k].space, m->stats[static_cast<int>(configured_[k].space)])) {
     return reject(m, Rejection::kBackground);
@@ -449,6 +498,16 @@ double ColorLearner::distanceToClass(int k, const ColorStats& measured) const {
     d2 += (measured.mean[ch] - centre) * (measured.mean[ch] - centre);
   }
   return std::sqrt(d2);
+}
+
+bool ColorLearner::mostlyInRange(int k, const std::vector<Channels>& colours) const {
+  size_t in = 0;
+  for (const Channels& p : colours) {
+    bool inside = true;
+    for (int ch = 0; ch < 3; ++ch) inside = inside && p[ch] >= state_[k].lo[ch] && p[ch] <= state_[k].hi[ch];
+    in += inside;
+  }
+  return 2 * in > colours.size();
 }
 
 int ColorLearner::nearestClass(const Measurement& m) const {
@@ -568,6 +627,13 @@ void ColorLearner::measureBlobs(const cv::Mat& bgr, const HorizonEstimate& horiz
   // The blobs the tracker sees with the current classes (it gets them on color_ranges).
   if (!blob_table_) blob_table_ = std::make_unique<ColorTable>(classes_);
   blob_segmenter_.segment(bgr, PixelFormat::BGR8, *blob_table_, &blob_regions_);
+  // One measurement per class: its blobs' pixels pooled. Not the union of each blob's range:
+  // a small blob's range is its mean +- small_object_margin, which reaches past the class's
+  // range, so a union (and the next frame's blobs in the wider range) would only ever widen it.
+  std::vector<std::vector<Channels>> pooled(configured_.size());
+  std::vector<Channels> pixels;
+  const size_t first = measurements_.size();
+  const int ring = options_.blob_ring_px;
   for (const Region& region : blob_regions_) {
     const int k = region.label - 1;
     if (k >= static_cast<int>(configured_.size()) || wrapped(configured_[k]) || region.area < options_.blob_min_px) {
@@ -577,14 +643,47 @@ void ColorLearner::measureBlobs(const cv::Mat& bgr, const HorizonEstimate& horiz
     m.pixels_box = cv::Rect(region.left, region.top, region.right - region.left + 1, region.bottom - region.top + 1);
     m.region = {cv::Point2d(region.left, region.top), cv::Point2d(region.right, region.top),
                 cv::Point2d(region.right, region.bottom), cv::Point2d(region.left, region.bottom)};
-    measureBlob(bgr, region, horizon, &m);
-    if (m.matched_class >= 0) (*matched)[k].push_back(m.stats[static_cast<int>(configured_[k].space)]);
+    pixels.clear();
+    measureBlob(bgr, region, horizon, &m, &pixels);
+    if (m.matched_class >= 0) {
+      pooled[k].insert(pooled[k].end(), pixels.begin(), pixels.end());
+      const cv::Rect& b = m.pixels_box;
+      measured_boxes_[k].push_back(cv::Rect(b.x - ring, b.y - ring, b.width + 2 * ring, b.height + 2 * ring));
+    }
     measurements_.push_back(m);
+  }
+  for (size_t k = 0; k < pooled.size(); ++k) {
+    if (pooled[k].empty()) continue;
+    ColorStats all;
+    bool consistent = colorStats(pooled[k], &all);
+    for (int ch = 0; ch < 3; ++ch) consistent = consistent && all.sigma[ch] <= options_.max_sigma;
+    if (consistent) {
+      // The blobs of one frame are the objects seen now (one close ball, say), mixed with
+      // their rims: not the spread the class must hold (the far ball of the next frame, and
+      // not the field next to it). They tell where the class's colour is now; the configured
+      // range, calibrated on examples, keeps its width there.
+      for (int ch = 0; ch < 3; ++ch) {
+        const int width = configured_[k].max[ch] - configured_[k].min[ch];
+        const int lo = std::min(255 - width, std::max(0, (all.lo[ch] + all.hi[ch] - width) / 2));
+        all.lo[ch] = static_cast<uint8_t>(lo);
+        all.hi[ch] = static_cast<uint8_t>(lo + width);
+      }
+      (*matched)[k].push_back(all);
+      continue;
+    }
+    // Blobs of different colours together: none teaches the class.
+    for (size_t i = first; i < measurements_.size(); ++i) {
+      if (measurements_[i].matched_class == static_cast<int>(k)) {
+        measurements_[i].matched_class = -1;
+        reject(&measurements_[i], Rejection::kMixedColours);
+      }
+    }
+    measured_boxes_[k].clear();
   }
 }
 
 void ColorLearner::measureBlob(const cv::Mat& bgr, const Region& region, const HorizonEstimate& horizon,
-                               Measurement* m) {
+                               Measurement* m, std::vector<Channels>* pixels) {
   const int k = region.label - 1;
   m->from_blob = true;
   // The whole measured box, ring included, must lie below the horizon.
@@ -594,10 +693,9 @@ void ColorLearner::measureBlob(const cv::Mat& bgr, const Region& region, const H
                            options_.horizon_margin_px) {
     return reject(m, Rejection::kAboveHorizon);
   }
-  std::vector<Channels> pixels;
-  blobPixels(bgr, region, k, &pixels);
+  blobPixels(bgr, region, k, pixels);
   ColorStats& stats = m->stats[static_cast<int>(configured_[k].space)];
-  if (!colorStats(pixels, &stats)) return reject(m, Rejection::kTooSmall);
+  if (!colorStats(*pixels, &stats)) return reject(m, Rejection::kTooSmall);
   for (int ch = 0; ch < 3; ++ch) {
     if (stats.sigma[ch] > options_.max_sigma) return reject(m, Rejection::kMixedColours);
   }

@@ -149,12 +149,12 @@ TEST(ColorLearner, FollowsAnObjectsColour) {
 }
 
 TEST(ColorLearner, AGroundColouredObjectNeverWidensAClass) {
-  // A "class" whose centre sits near the ground's colour would match a ground-coloured region:
+  // A "class" that holds the ground's colour at its edge would match a ground-coloured region:
   // the region is the ground, and the update is refused.
   const Channels ground = yuvFromRgb(40, 140, 50);
   std::vector<ColorClass> classes = obstacleClasses();
   classes.push_back(test::makeClass("greenish", ColorSpace::YUV,
-                                    {{static_cast<uint8_t>(ground[0] - 30), static_cast<uint8_t>(ground[1] + 12), static_cast<uint8_t>(ground[2] + 12)}},
+                                    {{static_cast<uint8_t>(ground[0] - 30), static_cast<uint8_t>(ground[1] - 2), static_cast<uint8_t>(ground[2] - 2)}},
                                     {{static_cast<uint8_t>(ground[0] + 30), static_cast<uint8_t>(ground[1] + 30), static_cast<uint8_t>(ground[2] + 30)}}));
   ColorLearner learner(classes, LearningOptions());
   SyntheticFrame f = boxFrame(cv::Scalar(50, 140, 40));  // the box is exactly ground-coloured
@@ -263,13 +263,77 @@ TEST(ColorLearner, BlobMeasurementsReachingTheGroundAreRefused) {
   }
   EXPECT_TRUE(measured) << "the ball's blob must have been measured";
   EXPECT_TRUE(refused);
-  // Without the rim the same class learns from the ball: the gate, not the blob path, refused.
+  // Without the rim the same class measures the ball and applies it: the gate, not the blob
+  // path, refused.
   ColorLearner clean({ball}, options);
   SyntheticFrame plain = boxFrame(cv::Scalar(50, 140, 40));
   plain.landmarks.lines.clear();
   cv::circle(plain.image, cv::Point(200, 170), 6, bgrOfYuv(g[0] + 26, g[1] + 8, g[2] + 8), cv::FILLED);
-  EXPECT_TRUE(clean.update(plain.image, plain.landmarks, plain.objects, 0.0));
-  EXPECT_EQ(clean.classes()[0].source, "learned");
+  clean.update(plain.image, plain.landmarks, plain.objects, 0.0);
+  bool applied = false;
+  for (const auto& m : clean.lastMeasurements()) {
+    applied = applied || (m.from_blob && m.pixels_box.contains(cv::Point(200, 170)) && m.matched_class == 0 &&
+                          m.rejection == ColorLearner::Rejection::kNone);
+  }
+  EXPECT_TRUE(applied);
+}
+
+TEST(ColorLearner, ARegionTheClassDoesNotHoldLeavesItAlone) {
+  // A box bounded by lines whose colour lies just past a class's range on one channel (a white
+  // line beside a cream ball's range): near the class's centre, but the class holds none of
+  // it, so it does not pull the range over itself. The same box inside the range teaches it.
+  const cv::Scalar box_bgr(60, 200, 200);
+  const Channels c = yuvFromRgb(200, 200, 60);
+  auto classWithUUpTo = [&](int u_hi) {
+    return test::makeClass("cream", ColorSpace::YUV,
+                           {{static_cast<uint8_t>(c[0] - 30), static_cast<uint8_t>(u_hi - 40), static_cast<uint8_t>(c[2] - 20)}},
+                           {{static_cast<uint8_t>(c[0] + 30), static_cast<uint8_t>(u_hi), static_cast<uint8_t>(c[2] + 20)}});
+  };
+  const ColorClass beside = classWithUUpTo(c[1] - 8), holding = classWithUUpTo(c[1] + 8);
+  const SyntheticFrame f = boxFrame(box_bgr);
+  ColorLearner learner({beside}, LearningOptions());
+  for (int i = 0; i < 20; ++i) learner.update(f.image, f.landmarks, f.objects, i / 30.0);
+  EXPECT_EQ(learner.classes()[0].min, beside.min);
+  EXPECT_EQ(learner.classes()[0].max, beside.max);
+  ASSERT_EQ(learner.lastMeasurements().size(), 1u);
+  EXPECT_EQ(learner.lastMeasurements()[0].rejection, ColorLearner::Rejection::kNoClass);
+  ColorLearner follows({holding}, LearningOptions());
+  EXPECT_TRUE(follows.update(f.image, f.landmarks, f.objects, 0.0));
+  EXPECT_EQ(follows.classes()[0].source, "learned");
+}
+
+TEST(ColorLearner, BlobLearningNeverTakesInTheBackground) {
+  // A ball whose rim is a little past its class's U range: measured with its ring, the class
+  // moves towards the rim's colour. Where a patch of the rim's colour lies elsewhere in the
+  // frame (a wall with no lines, not the ground's colour), the move that would take the patch
+  // in is refused; without the patch the class takes the rim's colour in.
+  const ColorClass ball = test::makeClass("ball", ColorSpace::YUV, {{165, 88, 135}}, {{195, 112, 165}}, 20);
+  const cv::Scalar rim_bgr = bgrOfYuv(180, 115, 150);
+  const Channels rim = yuvFromRgb(static_cast<int>(rim_bgr[2]), static_cast<int>(rim_bgr[1]), static_cast<int>(rim_bgr[0]));
+  ASSERT_GT(rim[1], ball.max[1]);
+  LearningOptions options;
+  options.from_blobs = true;
+  auto frame = [&](bool patch) {
+    SyntheticFrame f = boxFrame(cv::Scalar(50, 140, 40));  // the box ground-coloured: no box
+    f.landmarks.lines.clear();
+    cv::circle(f.image, cv::Point(200, 170), 6, rim_bgr, cv::FILLED);                   // the rim
+    cv::circle(f.image, cv::Point(200, 170), 4, bgrOfYuv(180, 100, 150), cv::FILLED);  // the core
+    if (patch) f.image(cv::Rect(20, 120, 50, 50)).setTo(rim_bgr);
+    return f;
+  };
+  const SyntheticFrame with_patch = frame(true), without = frame(false);
+  ColorLearner learner({ball}, options), clean({ball}, options);
+  bool refused = false;
+  for (int i = 0; i < 20; ++i) {
+    learner.update(with_patch.image, with_patch.landmarks, with_patch.objects, i / 30.0);
+    for (const auto& m : learner.lastMeasurements()) {
+      refused = refused || (m.from_blob && m.rejection == ColorLearner::Rejection::kTakesInBackground);
+    }
+    clean.update(without.image, without.landmarks, without.objects, i / 30.0);
+  }
+  EXPECT_TRUE(refused);
+  EXPECT_LT(learner.classes()[0].max[1], rim[1]) << "the class took the patch in";
+  EXPECT_GE(clean.classes()[0].max[1], rim[1]);
 }
 
 TEST(ColorLearner, RegionsAtTheHorizonAreNotObstacles) {
