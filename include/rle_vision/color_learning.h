@@ -80,6 +80,8 @@ class ColorLearner {
     kMixedColours,   // a channel spreads more than max_sigma
     kBackground,     // the ground's or the sky's colour
     kNoClass,        // farther than match_gate from every class
+    kNotInRange,     // most of its pixels lie outside the nearest class's current range (a
+                     // colour beside the class, not the class drifting; nor a new class)
     kOverlapsGround, // the class's range would overlap the ground's colour
     kOverlapsSky,    // ... the sky's
     kOverlapsClass,  // ... another class's (conflicting_class)

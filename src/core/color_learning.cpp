@@ -256,6 +256,7 @@ void ColorLearner::reject(Measurement* m, Rejection why, int conflicting_class) 
     case Rejection::kAboveHorizon: m->rejected = "at or above the horizon"; break;
     case Rejection::kMixedColours: m->rejected = "mixed colours (one channel spreads more than max_sigma)"; break;
     case Rejection::kBackground: m->rejected = "the ground's or the sky's colour"; break;
+    case Rejection::kNotInRange: m->rejected = "its pixels lie mostly outside the nearest class's range"; break;
     case Rejection::kNoClass:
       m->rejected = m->from_blob ? "its colour left its class's match gate" : "matches no class";
       break;
@@ -480,8 +481,9 @@ void ColorLearner::measureMode(const cv::Mat& bgr, const RegionPixels& pixels, c
   // The class must already hold most of the mode: learning follows an object the tracker
   // sees as this class while its colour drifts; a colour beside the class (a white line next
   // to a cream ball's range) would otherwise pull the range over itself, step by step.
-  if (k < 0 || !mostlyInRange(k, colours_in_space[static_cast<int>(configured_[k].space)])) {
-    return reject(m, Rejection::kNoClass);
+  if (k < 0) return reject(m, Rejection::kNoClass);
+  if (!mostlyInRange(k, colours_in_space[static_cast<int>(configured_[k].space)])) {
+    return reject(m, Rejection::kNotInRange);
   }
   // A mode of the ground's or the sky's colour is background between boxes, not an object.
   if (isBackground(configured_[k].space, m->stats[static_cast<int>(configured_[k].space)])) {
@@ -631,6 +633,7 @@ void ColorLearner::measureBlobs(const cv::Mat& bgr, const HorizonEstimate& horiz
   // a small blob's range is its mean +- small_object_margin, which reaches past the class's
   // range, so a union (and the next frame's blobs in the wider range) would only ever widen it.
   std::vector<std::vector<Channels>> pooled(configured_.size());
+  std::vector<std::vector<cv::Rect>> blob_boxes(configured_.size());  // with the ring
   std::vector<Channels> pixels;
   const size_t first = measurements_.size();
   const int ring = options_.blob_ring_px;
@@ -648,7 +651,7 @@ void ColorLearner::measureBlobs(const cv::Mat& bgr, const HorizonEstimate& horiz
     if (m.matched_class >= 0) {
       pooled[k].insert(pooled[k].end(), pixels.begin(), pixels.end());
       const cv::Rect& b = m.pixels_box;
-      measured_boxes_[k].push_back(cv::Rect(b.x - ring, b.y - ring, b.width + 2 * ring, b.height + 2 * ring));
+      blob_boxes[k].push_back(cv::Rect(b.x - ring, b.y - ring, b.width + 2 * ring, b.height + 2 * ring));
     }
     measurements_.push_back(m);
   }
@@ -661,14 +664,15 @@ void ColorLearner::measureBlobs(const cv::Mat& bgr, const HorizonEstimate& horiz
       // The blobs of one frame are the objects seen now (one close ball, say), mixed with
       // their rims: not the spread the class must hold (the far ball of the next frame, and
       // not the field next to it). They tell where the class's colour is now; the configured
-      // range, calibrated on examples, keeps its width there.
+      // range, calibrated on examples, keeps its width about their mean.
       for (int ch = 0; ch < 3; ++ch) {
         const int width = configured_[k].max[ch] - configured_[k].min[ch];
-        const int lo = std::min(255 - width, std::max(0, (all.lo[ch] + all.hi[ch] - width) / 2));
+        const long lo = std::min<long>(255 - width, std::max<long>(0, std::lround(all.mean[ch] - width / 2.0)));
         all.lo[ch] = static_cast<uint8_t>(lo);
         all.hi[ch] = static_cast<uint8_t>(lo + width);
       }
       (*matched)[k].push_back(all);
+      measured_boxes_[k].insert(measured_boxes_[k].end(), blob_boxes[k].begin(), blob_boxes[k].end());
       continue;
     }
     // Blobs of different colours together: none teaches the class.
@@ -678,7 +682,6 @@ void ColorLearner::measureBlobs(const cv::Mat& bgr, const HorizonEstimate& horiz
         reject(&measurements_[i], Rejection::kMixedColours);
       }
     }
-    measured_boxes_[k].clear();
   }
 }
 

@@ -296,7 +296,7 @@ TEST(ColorLearner, ARegionTheClassDoesNotHoldLeavesItAlone) {
   EXPECT_EQ(learner.classes()[0].min, beside.min);
   EXPECT_EQ(learner.classes()[0].max, beside.max);
   ASSERT_EQ(learner.lastMeasurements().size(), 1u);
-  EXPECT_EQ(learner.lastMeasurements()[0].rejection, ColorLearner::Rejection::kNoClass);
+  EXPECT_EQ(learner.lastMeasurements()[0].rejection, ColorLearner::Rejection::kNotInRange);
   ColorLearner follows({holding}, LearningOptions());
   EXPECT_TRUE(follows.update(f.image, f.landmarks, f.objects, 0.0));
   EXPECT_EQ(follows.classes()[0].source, "learned");
