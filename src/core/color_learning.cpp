@@ -38,6 +38,21 @@ bool overlaps(const ColorStats& a, const ColorStats& b) {
   return true;
 }
 
+// A smoothed range (lo and hi per channel) as whole levels, widened to them: what a class holds.
+ColorStats byteRange(const double* lo, const double* hi) {
+  ColorStats range;
+  for (int ch = 0; ch < 3; ++ch) {
+    range.lo[ch] = saturateToByte(static_cast<int>(std::floor(lo[ch])));
+    range.hi[ch] = saturateToByte(static_cast<int>(std::ceil(hi[ch])));
+  }
+  return range;
+}
+
+bool holds(const ColorStats& range, const cv::Vec3b& p) {
+  return p[0] >= range.lo[0] && p[0] <= range.hi[0] && p[1] >= range.lo[1] && p[1] <= range.hi[1] &&
+         p[2] >= range.lo[2] && p[2] <= range.hi[2];
+}
+
 bool wrapped(const ColorClass& c) { return c.min[0] > c.max[0] || c.min[1] > c.max[1] || c.min[2] > c.max[2]; }
 
 }  // namespace
@@ -279,22 +294,15 @@ bool ColorLearner::takesInBackground(int k, const ColorStats& blended) {
   const int s = static_cast<int>(configured_[k].space);
   if (frame_in_space_[s].empty()) frame_in_space_[s] = convertBgrImage(*frame_bgr_, configured_[k].space);
   const cv::Mat& image = frame_in_space_[s];
-  Channels lo, hi;
-  for (int ch = 0; ch < 3; ++ch) {
-    lo[ch] = saturateToByte(static_cast<int>(std::floor(state_[k].lo[ch])));
-    hi[ch] = saturateToByte(static_cast<int>(std::ceil(state_[k].hi[ch])));
-  }
+  const ColorStats now = byteRange(state_[k].lo, state_[k].hi);
   cv::Mat near_objects = cv::Mat::zeros(image.size(), CV_8UC1);
   for (const cv::Rect& box : measured_boxes_[k]) near_objects(box & cv::Rect(0, 0, image.cols, image.rows)).setTo(1);
-  auto in = [](const cv::Vec3b& p, const Channels& a, const Channels& b) {
-    return p[0] >= a[0] && p[0] <= b[0] && p[1] >= a[1] && p[1] <= b[1] && p[2] >= a[2] && p[2] <= b[2];
-  };
   size_t added_near = 0, added_away = 0;
   for (int y = 0; y < image.rows; ++y) {
     const cv::Vec3b* p = image.ptr<cv::Vec3b>(y);
     const uint8_t* near = near_objects.ptr<uint8_t>(y);
     for (int x = 0; x < image.cols; ++x) {
-      if (!in(p[x], blended.lo, blended.hi) || in(p[x], lo, hi)) continue;
+      if (!holds(blended, p[x]) || holds(now, p[x])) continue;
       (near[x] ? added_near : added_away) += 1;
     }
   }
@@ -309,11 +317,7 @@ ColorLearner::Rejection ColorLearner::apply(int k, const ColorStats& measured, d
     next.hi[ch] += options_.blend * (measured.hi[ch] - next.hi[ch]);
   }
   // Never let a class grow over the ground or the sky as measured now.
-  ColorStats blended;
-  for (int ch = 0; ch < 3; ++ch) {
-    blended.lo[ch] = saturateToByte(static_cast<int>(std::floor(next.lo[ch])));
-    blended.hi[ch] = saturateToByte(static_cast<int>(std::ceil(next.hi[ch])));
-  }
+  const ColorStats blended = byteRange(next.lo, next.hi);
   if (const ColorStats* g = groundStats(space)) {
     if (overlaps(blended, *g)) return Rejection::kOverlapsGround;
   }
@@ -323,12 +327,7 @@ ColorLearner::Rejection ColorLearner::apply(int k, const ColorStats& measured, d
   // Nor over another class of the same space: two classes would claim the same pixels.
   for (size_t j = 0; j < configured_.size(); ++j) {
     if (static_cast<int>(j) == k || configured_[j].space != space || wrapped(configured_[j])) continue;
-    ColorStats other;
-    for (int ch = 0; ch < 3; ++ch) {
-      other.lo[ch] = saturateToByte(static_cast<int>(std::floor(state_[j].lo[ch])));
-      other.hi[ch] = saturateToByte(static_cast<int>(std::ceil(state_[j].hi[ch])));
-    }
-    if (overlaps(blended, other)) {
+    if (overlaps(blended, byteRange(state_[j].lo, state_[j].hi))) {
       *conflicting_class = static_cast<int>(j);
       return Rejection::kOverlapsClass;
     }
