@@ -155,6 +155,16 @@ def eval_balls():
                                                           d['range']['max']))
 
 
+
+def eval_balls_bound():
+    d = load('eval_balls_bound')
+    rows = [[space, '%s..%s' % (b['min'], b['max']), '%.1f%%' % b['recall_pct'], '%.1f%%' % b['precision_pct'],
+             b['blobs'], '%.1f%%' % b['one_per_ball_precision_pct']] for space, b in d['spaces'].items()]
+    return (table(['space', 'best box (fitted to the scored labels)', 'recall', 'blob precision', 'blobs',
+                   'precision, one blob per ball'], rows) +
+            '\n\n(`%s` on %s: `bench/results/eval_balls_bound.json`; scored on %s)' % (
+                d['command'], d['date'], ', '.join(d['scored'])))
+
 def latency():
     d = load('latency')
     rows = []
@@ -181,7 +191,8 @@ def latency():
             provenance('make bench-latency', 'latency', d))
 
 
-WRITERS = {f.__name__: f for f in (tracker, tracker_noise, tracker_bounded, landmark, eval_horizon, eval_balls, latency)}
+WRITERS = {f.__name__: f for f in (tracker, tracker_noise, tracker_bounded, landmark, eval_horizon, eval_balls,
+                                   eval_balls_bound, latency)}
 
 
 def render(text):

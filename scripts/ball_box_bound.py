@@ -1,0 +1,158 @@
+#!/usr/bin/env python3
+"""How far can one colour box go? The best single box per colour space for the scored folders'
+OWN labels: an upper bound on what any colour range, calibrated or learned, can reach with the
+ball score of `make eval` (a blob of >= 20 px whose centroid lies in a labelled ball box finds
+that ball; blob precision is the share of such blobs on a ball).
+
+  ball_box_bound.py --calibrate DIR [--label-class N] [--json OUT] DIR...
+
+The box is fitted to the very frames it is scored on, so it is a bound, not a method: no
+calibration from other frames can beat it except by luck of the local search. The search is
+coordinate ascent on min(recall, precision) over the six bounds (moves of 1 to 16 levels),
+started from rle_vision_calibrate's class and statistics for DIR in that space and from the
+statistics' mean +- 1, 2 and 4 sigma. A bound below 90 means that no box this search finds
+reaches 90% recall and 90% precision together. Blob precision rewards a box that cuts a ball into
+several blobs (each lies on the ball), so the search also cuts balls where that pays; the JSON
+gives the detection precision with one blob per ball found as well. Slow: 10 to 20 minutes per
+space."""
+import argparse
+import datetime
+import glob
+import json
+import os
+import re
+import subprocess
+import sys
+
+import cv2
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+CALIBRATE = os.path.join(ROOT, '.ws', 'devel', 'lib', 'rle_vision', 'rle_vision_calibrate')
+CONVERSIONS = {'YUV': cv2.COLOR_BGR2YUV, 'HSV': cv2.COLOR_BGR2HSV, 'RGB': cv2.COLOR_BGR2RGB}
+MIN_BLOB_AREA_PX = 20  # as bench/eval_balls.cpp
+STEPS = (-16, -8, -4, -2, -1, 1, 2, 4, 8, 16)
+
+
+def yolo_boxes(label_path, label_class, width, height):
+    """As readYoloBoxes: [x0, x1) x [y0, y1) in pixels, rounded, at least 1 px, clipped."""
+    boxes = []
+    if not os.path.exists(label_path):
+        return boxes
+    for line in open(label_path):
+        fields = line.split()
+        if len(fields) != 5 or int(float(fields[0])) != label_class:
+            continue
+        cx, cy, w, h = map(float, fields[1:])
+        x0, y0 = round((cx - w / 2) * width), round((cy - h / 2) * height)
+        x1 = max(x0 + 1, round((cx + w / 2) * width))
+        y1 = max(y0 + 1, round((cy + h / 2) * height))
+        boxes.append((max(0, x0), max(0, y0), min(width, x1), min(height, y1)))
+    return boxes
+
+
+def load(folders, label_class):
+    frames = []
+    for folder in folders:
+        for path in sorted(glob.glob(os.path.join(folder, '*.jpg')) + glob.glob(os.path.join(folder, '*.png'))):
+            bgr = cv2.imread(path, cv2.IMREAD_COLOR)
+            if bgr is None:
+                sys.exit('%s: cannot read the image' % path)
+            boxes = yolo_boxes(os.path.splitext(path)[0] + '.txt', label_class, bgr.shape[1], bgr.shape[0])
+            frames.append((bgr, boxes))
+    if not frames:
+        sys.exit('no images in %s' % ' '.join(folders))
+    return frames
+
+
+def score(frames_in_space, lo, hi):
+    balls = found = blobs = on_ball = 0
+    for image, boxes in frames_in_space:
+        mask = cv2.inRange(image, np.array(lo, np.uint8), np.array(hi, np.uint8))
+        n, _, stats, centroids = cv2.connectedComponentsWithStats(mask, connectivity=8)
+        kept = [centroids[i] for i in range(1, n) if stats[i][cv2.CC_STAT_AREA] >= MIN_BLOB_AREA_PX]
+        inside = [[x0 <= x <= x1 - 1 and y0 <= y <= y1 - 1 for (x0, y0, x1, y1) in boxes] for x, y in kept]
+        balls += len(boxes)
+        blobs += len(kept)
+        found += sum(any(row[b] for row in inside) for b in range(len(boxes)))
+        on_ball += sum(any(row) for row in inside)
+    recall = 100.0 * found / max(balls, 1)
+    precision = 100.0 * on_ball / blobs if blobs else 100.0
+    return recall, precision, blobs, found
+
+
+def objective(s):
+    return min(s[0], s[1]), s[0] + s[1]
+
+
+def ascend(frames_in_space, lo, hi):
+    """First-improvement coordinate ascent: any move that raises the objective is taken."""
+    best = score(frames_in_space, lo, hi)
+    improved = True
+    while improved:
+        improved = False
+        for bound in range(6):
+            for step in STEPS:
+                l, h = list(lo), list(hi)
+                side = l if bound < 3 else h
+                side[bound % 3] = min(255, max(0, side[bound % 3] + step))
+                if l[bound % 3] > h[bound % 3] or (l, h) == (lo, hi):
+                    continue
+                s = score(frames_in_space, l, h)
+                if objective(s) > objective(best):
+                    best, lo, hi, improved = s, l, h, True
+    return best, lo, hi
+
+
+def calibrated_starts(calibrate_dir, label_class, space):
+    out = subprocess.run([CALIBRATE, '--name', 'ball', '--label-class', str(label_class), '--space', space,
+                          calibrate_dir], capture_output=True, text=True, check=True).stderr
+    numbers = lambda text: [float(v) for v in re.findall(r'\d+(?:\.\d+)?', text)]  # noqa: E731
+    stats = numbers(re.search(r'statistics: (.*)', out).group(1))
+    klass = numbers(re.search(r'class: \[(.*?)\]\.\.\[(.*?)\]', out).group(0))
+    mean, sigma = np.array(stats[0:3]), np.array(stats[3:6])
+    starts = [(stats[6:9], stats[9:12]), (klass[0:3], klass[3:6])]
+    starts += [(mean - k * sigma, mean + k * sigma) for k in (1, 2, 4)]
+    return [([int(np.clip(v, 0, 255)) for v in lo], [int(np.clip(v, 0, 255)) for v in hi]) for lo, hi in starts]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument('--calibrate', required=True, help='the folder make eval calibrates from (for the starts)')
+    parser.add_argument('--label-class', type=int, default=0)
+    parser.add_argument('--json', help='write the bounds here')
+    parser.add_argument('folders', nargs='+', help='the scored folders (their labels are fitted)')
+    args = parser.parse_args()
+    if not os.access(CALIBRATE, os.X_OK):
+        sys.exit('%s is missing: run `make build` first' % CALIBRATE)
+    cv2.setNumThreads(1)
+    frames = load(args.folders, args.label_class)
+    name = lambda folder: os.path.basename(folder.rstrip('/'))  # noqa: E731
+    result = {'command': 'scripts/ball_box_bound.py --calibrate %s %s' % (
+                  name(args.calibrate), ' '.join(name(f) for f in args.folders)),
+              'date': datetime.datetime.now(datetime.timezone.utc).strftime('%Y-%m-%d'),
+              'scored': [name(f) for f in args.folders], 'spaces': {}}
+    for space, code in CONVERSIONS.items():
+        in_space = [(cv2.cvtColor(bgr, code), boxes) for bgr, boxes in frames]
+        best = None
+        for lo, hi in calibrated_starts(args.calibrate, args.label_class, space):
+            s, l, h = ascend(in_space, lo, hi)
+            if best is None or objective(s) > objective(best[0]):
+                best = (s, l, h)
+        (recall, precision, blobs, found), lo, hi = best
+        # A ball cut into several blobs counts each in precision; one blob per ball found is
+        # the usual detection precision (the others are duplicates).
+        result['spaces'][space] = {'min': lo, 'max': hi, 'recall_pct': round(recall, 2),
+                                   'precision_pct': round(precision, 2), 'blobs': blobs, 'balls_found': found,
+                                   'one_per_ball_precision_pct': round(100.0 * found / max(blobs, 1), 2)}
+        print('%s: best box %s..%s: recall %.1f%%, precision %.1f%% (%d blobs, %d balls found)' % (
+            space, lo, hi, recall, precision, blobs, found), flush=True)
+    if args.json:
+        with open(args.json, 'w') as f:
+            json.dump(result, f, indent=2)
+            f.write('\n')
+        print('wrote %s' % args.json)
+
+
+if __name__ == '__main__':
+    main()
