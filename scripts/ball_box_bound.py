@@ -17,8 +17,8 @@ gives the detection precision with one blob per ball found as well. Slow: 10 to 
 space."""
 import argparse
 import datetime
-import glob
 import json
+import math
 import os
 import re
 import subprocess
@@ -34,6 +34,11 @@ MIN_BLOB_AREA_PX = 20  # as bench/eval_balls.cpp
 STEPS = (-16, -8, -4, -2, -1, 1, 2, 4, 8, 16)
 
 
+def lround(value):
+    """C's lround: halves away from zero (Python's round() takes them to even)."""
+    return int(math.copysign(math.floor(abs(value) + 0.5), value))
+
+
 def yolo_boxes(label_path, label_class, width, height):
     """As readYoloBoxes: [x0, x1) x [y0, y1) in pixels, rounded, at least 1 px, clipped."""
     boxes = []
@@ -44,9 +49,9 @@ def yolo_boxes(label_path, label_class, width, height):
         if len(fields) != 5 or int(float(fields[0])) != label_class:
             continue
         cx, cy, w, h = map(float, fields[1:])
-        x0, y0 = round((cx - w / 2) * width), round((cy - h / 2) * height)
-        x1 = max(x0 + 1, round((cx + w / 2) * width))
-        y1 = max(y0 + 1, round((cy + h / 2) * height))
+        x0, y0 = lround((cx - w / 2) * width), lround((cy - h / 2) * height)
+        x1 = max(x0 + 1, lround((cx + w / 2) * width))
+        y1 = max(y0 + 1, lround((cy + h / 2) * height))
         boxes.append((max(0, x0), max(0, y0), min(width, x1), min(height, y1)))
     return boxes
 
@@ -54,7 +59,8 @@ def yolo_boxes(label_path, label_class, width, height):
 def load(folders, label_class):
     frames = []
     for folder in folders:
-        for path in sorted(glob.glob(os.path.join(folder, '*.jpg')) + glob.glob(os.path.join(folder, '*.png'))):
+        names = sorted(n for n in os.listdir(folder) if os.path.splitext(n)[1] in ('.jpg', '.jpeg', '.png'))
+        for path in (os.path.join(folder, n) for n in names):
             bgr = cv2.imread(path, cv2.IMREAD_COLOR)
             if bgr is None:
                 sys.exit('%s: cannot read the image' % path)
