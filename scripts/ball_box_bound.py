@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
 """How far can one colour box go? The best single box per colour space for the scored folders'
-OWN labels: an upper bound on what any colour range, calibrated or learned, can reach with the
-ball score of `make eval` (a blob of >= 20 px whose centroid lies in a labelled ball box finds
-that ball; blob precision is the share of such blobs on a ball).
+OWN labels, with the ball score of `make eval` (a blob of >= 20 px whose centroid lies in a
+labelled ball box finds that ball; blob precision is the share of such blobs on a ball).
 
   ball_box_bound.py --calibrate DIR [--label-class N] [--json OUT] DIR...
 
-The box is fitted to the very frames it is scored on, so it is a bound, not a method: no
-calibration from other frames can beat it except by luck of the local search. The search is
+The box is fitted to the very frames it is scored on, so it is a yardstick, not a method: a
+range calibrated on other frames is not expected to beat it. The search is local, so what it
+finds is a floor under the best box, not a proof that none does better. The search is
 coordinate ascent on min(recall, precision) over the six bounds (moves of 1 to 16 levels),
 started from rle_vision_calibrate's class and statistics for DIR in that space and from the
 statistics' mean +- 1, 2 and 4 sigma. A bound below 90 means that no box this search finds

@@ -155,7 +155,6 @@ def eval_balls():
                                                           d['range']['max']))
 
 
-
 def eval_balls_bound():
     d = load('eval_balls_bound')
     rows = [[space, '%s..%s' % (b['min'], b['max']), '%.1f%%' % b['recall_pct'], '%.1f%%' % b['precision_pct'],
@@ -164,6 +163,7 @@ def eval_balls_bound():
                    'precision, one blob per ball'], rows) +
             '\n\n(`%s` on %s: `bench/results/eval_balls_bound.json`; scored on %s)' % (
                 d['command'], d['date'], ', '.join(d['scored'])))
+
 
 def latency():
     d = load('latency')
