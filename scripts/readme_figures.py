@@ -158,9 +158,10 @@ def eval_balls():
 def eval_balls_bound():
     d = load('eval_balls_bound')
     rows = [[space, '%s..%s' % (b['min'], b['max']), '%.1f%%' % b['recall_pct'], '%.1f%%' % b['precision_pct'],
-             b['blobs'], '%.1f%%' % b['one_per_ball_precision_pct']] for space, b in d['spaces'].items()]
-    return (table(['space', 'best box (fitted to the scored labels)', 'recall', 'blob precision', 'blobs',
-                   'precision, one blob per ball'], rows) +
+             b['blobs'], b['blobs_off_balls'], '%.1f%%' % b['precision_pieces_not_counted_pct']]
+            for space, b in d['spaces'].items()]
+    return (table(['space', 'best box found (fitted to the scored labels)', 'recall', 'blob precision', 'blobs',
+                   'blobs off the balls', 'precision, extra pieces of a ball not counted'], rows) +
             '\n\n(`%s` on %s: `bench/results/eval_balls_bound.json`; scored on %s)' % (
                 d['command'], d['date'], ', '.join(d['scored'])))
 
