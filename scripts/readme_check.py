@@ -117,12 +117,13 @@ class Demo:
         self.log = open(os.path.join(os.environ.get('ROS_HOME', '/tmp'), 'readme_check_demo.log'), 'w')
         self.proc = subprocess.Popen(login_shell(script), stdout=self.log, stderr=subprocess.STDOUT,
                                      start_new_session=True)
-        # Until the master is up rostopic fails at once: ask again.
-        wait = ('%s\nfor i in $(seq 30); do timeout 10 rostopic echo -n 1 /camera/blobs/header > /dev/null 2>&1 '
-                '&& exit 0; sleep 2; done; exit 1\n' % '\n'.join(prelude))
+        # Until the master is up rostopic fails at once: ask again, for up to 3 minutes (a slow
+        # machine's start-up), returning as soon as blobs come.
+        wait = ('%s\nend=$((SECONDS + 180)); while ((SECONDS < end)); do timeout 10 rostopic echo -n 1 /camera/blobs/header '
+                '> /dev/null 2>&1 && exit 0; sleep 2; done; exit 1\n' % '\n'.join(prelude))
         ok = subprocess.call(login_shell(wait), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL) == 0
         if not ok:
-            print('[readme] the demo gave no blobs within 60 s (log: %s)' % self.log.name)
+            print('[readme] the demo gave no blobs within 180 s (log: %s)' % self.log.name)
 
     def stop(self):
         os.killpg(self.proc.pid, signal.SIGINT)

@@ -2,7 +2,7 @@
 # The running pipeline under AddressSanitizer: builds the package (nodelets included) with ASan
 # in a git-ignored catkin workspace (.ws-asan-ros), runs demo.launch (simulator, tracker, edge
 # detector, landmark with learning, ground projector, all in one manager) for ASAN_PIPELINE_S
-# seconds (default 60) with both cores kept busy by two spinning processes after the start, and
+# seconds (default 60) with both cores kept busy by two spinning processes once it runs, and
 # fails on any sanitizer report or a process that died. The load matters: the landmark worker
 # runs at idle priority, so only a busy machine makes it lag its colour-image cache, and that is
 # when a frame's pixels can be freed under it (the use-after-free this found).
@@ -36,10 +36,16 @@ demo_pipeline_under_load() {
     export ASAN_OPTIONS="detect_leaks=0:halt_on_error=1:log_path=$logs/asan"
     # The manager (/usr/lib/nodelet/nodelet) is not instrumented: the runtime must come first.
     LD_PRELOAD="$libasan" exec roslaunch --no-summary rle_vision demo.launch rviz:=false realtime_priority:=0 \
-      duration_s:=$((seconds + 15))
+      duration_s:=$((seconds + 200))
   ) >"$logs/demo.log" 2>&1 &
   local demo=$!
-  sleep 10
+  # The load starts once the pipeline runs (its first summary line), however long an
+  # instrumented start-up takes on a slow machine.
+  local waited
+  for ((waited = 0; waited < 180; waited++)); do
+    grep -q "blobs: " "$logs/demo.log" 2>/dev/null || ! kill -0 "$demo" 2>/dev/null && break
+    sleep 1
+  done
   local busy=()
   for _ in 1 2; do
     (while :; do :; done) &
@@ -47,6 +53,7 @@ demo_pipeline_under_load() {
   done
   sleep "$seconds"
   kill "${busy[@]}" 2>/dev/null
+  kill -INT "$demo" 2>/dev/null  # Ctrl-C: roslaunch stops every node
   wait "$demo" 2>/dev/null
   local reports
   reports=$(ls "$logs"/asan.* 2>/dev/null || true)

@@ -45,6 +45,7 @@ class SimulatorNodelet : public nodelet::Nodelet {
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   ros::Timer timer_;
   ros::WallTimer start_timer_;
+  ros::WallTimer subscribers_timer_;
 
   double rate_hz_ = 30;
   int max_frames_ = 0;
@@ -128,10 +129,31 @@ void SimulatorNodelet::onInit() {
     NODELET_WARN("~start_delay_s must be a number >= 0, got %f: starting at once", start_delay_s);
     start_delay_s = 0;
   }
-  // Waiting lets recorders and lazily subscribing pipelines connect before frame 0.
-  start_timer_ = nh.createWallTimer(ros::WallDuration(std::max(start_delay_s, 1e-3)), [this](const ros::WallTimerEvent&) {
-    timer_ = getNodeHandle().createTimer(ros::Duration(1.0 / rate_hz_), &SimulatorNodelet::timerCb, this);
-  }, /*oneshot=*/true);
+  int start_after_subscribers = 0;
+  pnh.param("start_after_subscribers", start_after_subscribers, 0);
+  if (start_after_subscribers < 0) {
+    NODELET_WARN("~start_after_subscribers must be >= 0, got %d: not waiting for subscribers", start_after_subscribers);
+    start_after_subscribers = 0;
+  }
+  // Waiting lets recorders and lazily subscribing pipelines connect before frame 0: first for
+  // the given number of image_raw subscribers (however long a loaded machine takes to start
+  // them), then start_delay_s.
+  const auto start = [this, start_delay_s] {
+    start_timer_ = getNodeHandle().createWallTimer(ros::WallDuration(std::max(start_delay_s, 1e-3)),
+        [this](const ros::WallTimerEvent&) {
+          timer_ = getNodeHandle().createTimer(ros::Duration(1.0 / rate_hz_), &SimulatorNodelet::timerCb, this);
+        }, /*oneshot=*/true);
+  };
+  if (start_after_subscribers == 0) {
+    start();
+    return;
+  }
+  NODELET_INFO("frame 0 waits for %d image_raw subscribers", start_after_subscribers);
+  subscribers_timer_ = nh.createWallTimer(ros::WallDuration(0.05), [this, start, start_after_subscribers](const ros::WallTimerEvent&) {
+    if (static_cast<int>(pub_camera_.getNumSubscribers()) < start_after_subscribers) return;
+    subscribers_timer_.stop();
+    start();
+  });
 }
 
 sensor_msgs::CameraInfo SimulatorNodelet::cameraInfo(const std_msgs::Header& header) const {

@@ -7,7 +7,6 @@ import signal
 import subprocess
 import sys
 import threading
-import time
 import unittest
 
 import rosbag
@@ -18,6 +17,8 @@ from std_srvs.srv import SetBool
 
 sys.path.insert(0, __file__.rsplit('/', 1)[0])
 from truth_matching import store_by_stamp, wait_until_wired  # noqa: E402
+import waiting  # noqa: E402
+from waiting import SLOW  # noqa: E402
 
 FRAMES = 60
 # Every replay input, subscribed once the replay pipeline is connected.
@@ -59,27 +60,42 @@ class BagReplayTest(unittest.TestCase):
     def setUp(self):
         self.lock = threading.Lock()
         self.outputs = {run: {name: {} for name in TOPICS} for run in ('live', 'replay')}
+        self.live_subscribers = []
         for run, ns in (('live', 'camera'), ('replay', 'replay')):
             for name, msg_type in TOPICS.items():
-                rospy.Subscriber('/%s/%s' % (ns, name), msg_type, store_by_stamp(self.lock, self.outputs[run][name]),
-                                 queue_size=200)
+                sub = rospy.Subscriber('/%s/%s' % (ns, name), msg_type, store_by_stamp(self.lock, self.outputs[run][name]),
+                                       queue_size=200)
+                if run == 'live':
+                    self.live_subscribers.append(sub)
 
     def wait_for(self, condition, timeout_s):
-        deadline = time.time() + timeout_s
-        while time.time() < deadline and not rospy.is_shutdown():
+        def locked():
             with self.lock:
-                if condition():
-                    return True
-            time.sleep(0.2)
-        return False
+                return condition()
+        return waiting.wait_for(locked, timeout_s, period_s=0.2)
+
+    def common(self, name):
+        return set(self.outputs['live'][name]) & set(self.outputs['replay'][name])
 
     def test_replay_equals_live(self):
         bag_path = rospy.get_param('~bag')
-        # The recorder stops by itself (duration_s) and closes the bag.
-        self.assertTrue(self.wait_for(lambda: os.path.exists(bag_path) and not os.path.exists(bag_path + '.active'), 60),
+        # Recorded once this test listens to the live outputs (so the pipeline reads the camera):
+        # the simulator waits for both to read its images. The recorder stops by itself
+        # (duration_s, counted from its start) and closes the bag.
+        self.assertTrue(waiting.wait_for(lambda: all(s.get_num_connections() for s in self.live_subscribers), 60 * SLOW),
+                        'the live pipeline never connected')
+        for old in (bag_path, bag_path + '.active'):  # a bag of an earlier run would pass for this one
+            if os.path.exists(old):
+                os.remove(old)
+        record = subprocess.Popen(['roslaunch', 'rle_vision', 'record.launch', 'bag:=' + bag_path, 'outputs:=false',
+                                   'duration_s:=9'], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                  start_new_session=True)
+        self.addCleanup(lambda: record.poll() is None and os.killpg(record.pid, signal.SIGINT))
+        self.assertTrue(self.wait_for(lambda: os.path.exists(bag_path) and not os.path.exists(bag_path + '.active'),
+                                      60 * SLOW),
                         'record.launch wrote no bag at %s' % bag_path)
         live = self.outputs['live']
-        self.assertTrue(self.wait_for(lambda: len(live['blobs']) >= FRAMES, 10), 'the live tracker missed frames')
+        self.assertTrue(self.wait_for(lambda: len(live['blobs']) >= FRAMES, 10 * SLOW), 'the live tracker missed frames')
         with rosbag.Bag(bag_path) as bag:
             counts = {t: bag.get_message_count(topic_filters=[t]) for t in ('/camera/image_raw', '/camera/camera_info', '/tf')}
         self.assertEqual(counts['/camera/image_raw'], FRAMES, counts)
@@ -94,20 +110,22 @@ class BagReplayTest(unittest.TestCase):
             # The bag plays once the replay's nodes are connected: the ground projector subscribes
             # to blobs only when obstacles has a subscriber, and a frame played before that would
             # have no obstacles (a loaded machine can take longer than any fixed delay).
-            self.assertTrue(wait_until_wired(REPLAY_INPUTS, 60), 'the replay pipeline never connected')
+            self.assertTrue(wait_until_wired(REPLAY_INPUTS, 60 * SLOW), 'the replay pipeline never connected')
             rospy.ServiceProxy('/play/pause_playback', SetBool)(False)
             done = self.wait_for(lambda: set(live['blobs']) <= set(replay['blobs']) and
-                                 set(live['obstacles']) <= set(replay['obstacles']), 60)
-            time.sleep(1.0)  # let the landmark node finish its last frames
+                                 set(live['obstacles']) <= set(replay['obstacles']), 60 * SLOW)
+            # The landmark node, at low priority, may still be working on the last frames.
+            self.wait_for(lambda: len(self.common('lines')) >= FRAMES // 2 and
+                          len(self.common('horizon')) >= FRAMES // 2, 30 * SLOW)
         finally:
             os.killpg(play.pid, signal.SIGINT)
-            play.wait(timeout=30)
+            play.wait(timeout=30 * SLOW)
         self.assertTrue(done, 'the replay gave %d blob messages of %d' % (len(replay['blobs']), len(live['blobs'])))
 
         with self.lock:
             compared = {}
             for name in TOPICS:
-                common = sorted(set(live[name]) & set(replay[name]))
+                common = sorted(self.common(name))
                 compared[name] = len(common)
                 # The camera pose comes through tf2, whose lookups may compose the same transforms
                 # in another order: obstacles agree to far better than a micrometre, not to the

@@ -4,7 +4,6 @@ cmvision/Blobs (generated here from cmvision's message definition; the cmvision 
 is not needed) receives the blobs on /blobs, and they agree with rle_vision's own BlobArray."""
 import sys
 import threading
-import time
 import unittest
 
 import genpy.dynamic
@@ -14,6 +13,7 @@ from rle_vision.msg import BlobArray, CmvisionBlobs
 
 sys.path.insert(0, __file__.rsplit('/', 1)[0])
 from truth_matching import store_by_stamp  # noqa: E402
+from waiting import SLOW, wait_for  # noqa: E402
 
 # cmvision's msg/Blobs.msg and msg/Blob.msg, in the layout of a message's full text.
 CMVISION_BLOBS = """Header header
@@ -53,12 +53,10 @@ class CmvisionDropInTest(unittest.TestCase):
         cm, native = {}, {}
         rospy.Subscriber('/blobs', cmvision_blobs_type, store_by_stamp(lock, cm), queue_size=50)
         rospy.Subscriber('/rle_blobs', BlobArray, store_by_stamp(lock, native), queue_size=50)
-        deadline = time.time() + 30
-        while time.time() < deadline:
+        def enough():
             with lock:
-                if len(set(cm) & set(native)) >= 30:
-                    break
-            time.sleep(0.1)
+                return len(set(cm) & set(native)) >= 30
+        wait_for(enough, 30 * SLOW)
         with lock:
             pairs = [(cm[s], native[s]) for s in sorted(set(cm) & set(native))]
         self.assertGreaterEqual(len(pairs), 30, 'cmvision-typed subscriber got %d messages' % len(cm))

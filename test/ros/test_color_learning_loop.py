@@ -19,6 +19,7 @@ from rle_vision.msg import BlobArray, ColorRangeArray, SceneTruth
 
 sys.path.insert(0, __file__.rsplit('/', 1)[0])
 from truth_matching import whole_objects, iou, store_by_stamp  # noqa: E402
+from waiting import SLOW, wait_for  # noqa: E402
 
 RATE_HZ = 30.0
 END_S = 31.0
@@ -42,12 +43,10 @@ class ColorLearningLoopTest(unittest.TestCase):
         colors = rospy.get_param('~colors', None)
         min_area = rospy.get_param('~min_area', 200)
         min_window_recall = rospy.get_param('~min_window_recall', 0.9)
-        deadline = rospy.Time.now() + rospy.Duration(END_S + 60)
-        while not rospy.is_shutdown() and rospy.Time.now() < deadline:
+        def ended():  # the scene's frame index, not the wall clock: a slow simulator takes longer
             with self.lock:
-                if any(t.frame_index >= END_S * RATE_HZ for t in self.truth.values()):
-                    break
-            rospy.sleep(0.5)
+                return any(t.frame_index >= END_S * RATE_HZ for t in self.truth.values())
+        wait_for(ended, (END_S + 60) * SLOW, period_s=0.5)
         with self.lock:
             frames = [(self.truth[s], self.blobs[s]) for s in sorted(set(self.truth) & set(self.blobs))]
             ranges = list(self.ranges)

@@ -6,6 +6,7 @@ Landmark resumes from them; killing the tracker, the restarted one picks up the 
 learned ranges."""
 import os
 import signal
+import sys
 import threading
 import time
 import unittest
@@ -16,6 +17,9 @@ import rospy
 import rostest
 import yaml
 from rle_vision.msg import BlobArray, ColorRangeArray, LineArray, SceneTruth
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from waiting import SLOW, require  # noqa: E402
 
 PACKAGE_DIR = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
@@ -54,16 +58,6 @@ class Recorder:
             return self.items[-1][1] if self.items else None
 
 
-def wait_for(condition, timeout_s, what):
-    deadline = time.time() + timeout_s
-    while time.time() < deadline:
-        value = condition()
-        if value:
-            return value
-        time.sleep(0.1)
-    raise AssertionError('timed out after %.0f s waiting for %s' % (timeout_s, what))
-
-
 class FaultRecoveryTest(unittest.TestCase):
     def setUp(self):
         self.truth = Recorder('/camera/ground_truth/scene', SceneTruth)
@@ -92,7 +86,7 @@ class FaultRecoveryTest(unittest.TestCase):
             if any(v[2] == 'learned' for v in l.values()) and l == a:
                 return learned
             return None
-        wait_for(learned_in_use, 90, 'learned colour ranges in use by the tracker')
+        require(learned_in_use, 90 * SLOW, 'learned colour ranges in use by the tracker')
         tracker_pid = pid_of('/camera/tracker')
         landmark_pid = pid_of('/camera/landmark')
         self.assertIsNotNone(tracker_pid)
@@ -102,9 +96,9 @@ class FaultRecoveryTest(unittest.TestCase):
         last_learned = ranges_of(self.learned.last())
         t_kill = time.time()
         os.kill(landmark_pid, signal.SIGKILL)
-        wait_for(lambda: pid_of('/camera/landmark') not in (None, landmark_pid), 30, 'the landmark to restart')
-        wait_for(lambda: self.lines.since(time.time() - 0.5) and self.lines.since(t_kill + 1.0), 30,
-                 'lines from the restarted landmark')
+        require(lambda: pid_of('/camera/landmark') not in (None, landmark_pid), 30 * SLOW, 'the landmark to restart')
+        require(lambda: self.lines.since(time.time() - 0.5) and self.lines.since(t_kill + 1.0), 30 * SLOW,
+                'lines from the restarted landmark')
         t_back = time.time()
         # The tracker was not disturbed: same process, blobs for the frames, the learned ranges.
         self.assertEqual(pid_of('/camera/tracker'), tracker_pid)
@@ -115,7 +109,7 @@ class FaultRecoveryTest(unittest.TestCase):
         for msg in active_during_outage:  # only ever learned ranges, never the configured ones again
             self.assertTrue(any(v[2] == 'learned' for v in ranges_of(msg).values()))
         # The restarted landmark resumed: its first ranges continue the learned ones.
-        first = wait_for(lambda: self.learned.since(t_kill), 30, 'colour ranges from the restarted landmark')[0]
+        first = require(lambda: self.learned.since(t_kill), 30 * SLOW, 'colour ranges from the restarted landmark')[0]
         resumed = ranges_of(first)
         for key, (lo, hi, source) in last_learned.items():
             if source != 'learned' or key not in self.configured:
@@ -130,7 +124,7 @@ class FaultRecoveryTest(unittest.TestCase):
         # 3. Kill the tracker: the restarted one takes the latched learned ranges.
         t_kill = time.time()
         os.kill(tracker_pid, signal.SIGKILL)
-        wait_for(lambda: pid_of('/camera/tracker') not in (None, tracker_pid), 30, 'the tracker to restart')
+        require(lambda: pid_of('/camera/tracker') not in (None, tracker_pid), 30 * SLOW, 'the tracker to restart')
 
         def latched_ranges_in_use():
             latest = self.learned.last()
@@ -138,9 +132,9 @@ class FaultRecoveryTest(unittest.TestCase):
                 if ranges_of(msg) == ranges_of(latest):
                     return True
             return False
-        wait_for(latched_ranges_in_use, 30, 'the restarted tracker to use the latched learned ranges')
+        require(latched_ranges_in_use, 30 * SLOW, 'the restarted tracker to use the latched learned ranges')
         t_restarted = time.time()
-        wait_for(lambda: self.blobs.since(t_restarted + 2.0), 30, 'blobs from the restarted tracker')
+        require(lambda: self.blobs.since(t_restarted + 2.0), 30 * SLOW, 'blobs from the restarted tracker')
         share = self.blob_share(t_restarted, time.time() - 0.5)
         print('restarted tracker answered %.1f%% of the frames' % (100 * share))
         self.assertGreaterEqual(share, 0.9)

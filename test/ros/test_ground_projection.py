@@ -17,6 +17,7 @@ from sensor_msgs.msg import Imu
 
 sys.path.insert(0, __file__.rsplit('/', 1)[0])
 from truth_matching import clear_objects, iou, store_by_stamp  # noqa: E402
+from waiting import SLOW, wait_for  # noqa: E402
 
 FRAMES = 90  # 3 s: every phase of the gait
 
@@ -57,12 +58,10 @@ class GroundProjectionTest(unittest.TestCase):
     def test_obstacles_lie_on_the_true_footprints(self):
         expect_horizon = rospy.get_param('~expect_horizon')
         max_error_ratio = rospy.get_param('~max_error_ratio')
-        deadline = rospy.Time.now() + rospy.Duration(90)
-        while not rospy.is_shutdown() and rospy.Time.now() < deadline:
+        def enough():
             with self.lock:
-                if len(set(self.truth) & set(self.blobs) & set(self.obstacles)) >= FRAMES:
-                    break
-            rospy.sleep(0.2)
+                return len(set(self.truth) & set(self.blobs) & set(self.obstacles)) >= FRAMES
+        wait_for(enough, 90 * SLOW, period_s=0.2)
         with self.lock:
             stamps = sorted(set(self.truth) & set(self.blobs) & set(self.obstacles))
             frames = [(self.truth[s], self.blobs[s], self.obstacles[s]) for s in stamps]
@@ -70,7 +69,12 @@ class GroundProjectionTest(unittest.TestCase):
             imus = [self.imu[s] for s in sorted(self.imu)]
         self.assertGreaterEqual(len(frames), FRAMES, 'too few obstacle messages paired with ground truth by stamp')
 
-        errors, clipped_checked = [], 0
+        # With the horizon as the source, a frame the low-priority landmark skipped (a loaded or
+        # slow machine skips more) gets an attitude interpolated between the horizons around it,
+        # while the camera sways with the gait: those frames are held to twice the bound.
+        with self.lock:
+            own_horizon = set(self.attitude) if expect_horizon else set(self.obstacles)
+        errors, between_errors, clipped_checked = [], [], 0
         for truth, blobs, obstacles in frames:
             self.assertEqual(obstacles.header.frame_id, 'base_link')
             blob_by_id = {b.id: b for b in blobs.blobs}
@@ -88,15 +92,19 @@ class GroundProjectionTest(unittest.TestCase):
                 box = (blob.left, blob.top, blob.right, blob.bottom)
                 for obj in clear_objects(truth, min_area=200):
                     if obj.color == blob.color and iou(box, (obj.left, obj.top, obj.right, obj.bottom)) >= 0.5:
-                        errors.append((distance_to_footprint_edge(obj, o.position.x, o.position.y) / o.range_m,
-                                       obj.name, o.range_m))
-        self.assertGreater(len(errors), 2 * FRAMES, 'too few obstacles matched to whole boxes')
+                        error = (distance_to_footprint_edge(obj, o.position.x, o.position.y) / o.range_m, obj.name,
+                                 o.range_m)
+                        (errors if obstacles.header.stamp in own_horizon else between_errors).append(error)
+        self.assertGreater(len(errors), FRAMES, 'too few obstacles matched to whole boxes (in frames with a horizon)')
         ratios = [e[0] for e in errors]
         worst = max(errors)
         rospy.loginfo('attitude from %s: %d obstacles on whole boxes, distance to the true footprint median %.2f%%, '
-                      'worst %.2f%% of range (%s at %.2f m)', 'the horizon' if expect_horizon else 'tf',
-                      len(errors), 100 * median(ratios), 100 * worst[0], worst[1], worst[2])
+                      'worst %.2f%% of range (%s at %.2f m); %d in frames between horizons, worst %.2f%%',
+                      'the horizon' if expect_horizon else 'tf', len(errors), 100 * median(ratios), 100 * worst[0],
+                      worst[1], worst[2], len(between_errors), 100 * max(between_errors, default=(0,))[0])
         self.assertLess(worst[0], max_error_ratio)
+        if between_errors:
+            self.assertLess(max(between_errors)[0], 2 * max_error_ratio, 'between horizons: %s' % (max(between_errors),))
 
         if expect_horizon:
             self.assertGreater(len(attitudes), 0.8 * FRAMES,

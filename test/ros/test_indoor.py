@@ -12,6 +12,7 @@ from rle_vision.msg import BlobArray, Horizon, LineArray, SceneTruth
 
 sys.path.insert(0, __file__.rsplit('/', 1)[0])
 from truth_matching import near_segment, nearest_blob, segment_length, store_by_stamp, whole_objects  # noqa: E402
+from waiting import SLOW, wait_for  # noqa: E402
 
 FRAMES = 40
 
@@ -26,14 +27,16 @@ class IndoorTest(unittest.TestCase):
         rospy.Subscriber('camera/blobs', BlobArray, store_by_stamp(self.lock, self.blobs), queue_size=300)
 
     def frames(self):
-        deadline = rospy.Time.now() + rospy.Duration(100)
-        while not rospy.is_shutdown() and rospy.Time.now() < deadline:
+        def paired():
             with self.lock:
                 stamps = sorted(set(self.truth) & set(self.horizons) & set(self.lines) & set(self.blobs))
                 if len(stamps) >= FRAMES:
                     return [(self.truth[s], self.horizons[s], self.lines[s], self.blobs[s]) for s in stamps]
-            rospy.sleep(0.2)
-        self.fail('fewer than %d frames with truth, horizon, lines and blobs' % FRAMES)
+            return None
+        frames = wait_for(paired, 100 * SLOW, period_s=0.2)
+        if not frames:
+            self.fail('fewer than %d frames with truth, horizon, lines and blobs' % FRAMES)
+        return frames
 
     def test_no_horizon_but_blobs_and_lines(self):
         frames = self.frames()

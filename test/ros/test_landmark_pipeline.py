@@ -14,6 +14,7 @@ from visualization_msgs.msg import MarkerArray
 
 sys.path.insert(0, __file__.rsplit('/', 1)[0])
 from truth_matching import line_angle_difference, near_segment, segment_length, store_by_stamp  # noqa: E402
+from waiting import SLOW, wait_for  # noqa: E402
 
 FRAMES = 60
 
@@ -34,12 +35,10 @@ class LandmarkPipelineTest(unittest.TestCase):
             self.markers.append(msg)
 
     def test_horizon_and_lines_match_ground_truth(self):
-        deadline = rospy.Time.now() + rospy.Duration(90)
-        while not rospy.is_shutdown() and rospy.Time.now() < deadline:
+        def enough():
             with self.lock:
-                if len(set(self.truth) & set(self.horizons) & set(self.lines)) >= FRAMES:
-                    break
-            rospy.sleep(0.2)
+                return len(set(self.truth) & set(self.horizons) & set(self.lines)) >= FRAMES
+        wait_for(enough, 90 * SLOW, period_s=0.2)
         with self.lock:
             stamps = sorted(set(self.truth) & set(self.horizons) & set(self.lines))
             frames = [(self.truth[s], self.horizons[s], self.lines[s]) for s in stamps]

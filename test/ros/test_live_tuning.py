@@ -5,7 +5,6 @@ dynamic_reconfigure, feeds a synthetic image whose right answer differs between 
 values, and checks the output."""
 import math
 import sys
-import threading
 import time
 import unittest
 
@@ -17,53 +16,50 @@ from sensor_msgs.msg import Image
 
 sys.path.insert(0, __file__.rsplit('/', 1)[0])
 from synthetic_images import BgrImage, bgr_from_yuv  # noqa: E402
+from waiting import SLOW, ByStamp, wait_for  # noqa: E402
 
 W, H = 320, 240
 RED = bgr_from_yuv(90, 106, 220)       # inside colors.yaml's red box
 SKY, GROUND = (235, 205, 170), (50, 140, 40)
 
 
-class Outputs:
-    """Messages of one topic by stamp."""
-
-    def __init__(self, topic, msg_type):
-        self.lock = threading.Lock()
-        self.by_stamp = {}
-        self.last = None
-        self.sub = rospy.Subscriber(topic, msg_type, self.callback, queue_size=20)
-
-    def callback(self, msg):
-        with self.lock:
-            self.by_stamp[msg.header.stamp] = msg
-            self.last = msg
-
-    def wait(self, stamp, timeout_s=10.0):
-        deadline = time.time() + timeout_s
-        while time.time() < deadline:
-            with self.lock:
-                if stamp in self.by_stamp:
-                    return self.by_stamp[stamp]
-            time.sleep(0.02)
-        raise AssertionError('no message on %s for stamp %s' % (self.sub.name, stamp))
-
-
 class LiveTuningTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.tracker_image = rospy.Publisher('/tune_tracker/image_raw', Image, queue_size=5)
-        cls.blobs = Outputs('/tune_tracker/blobs', BlobArray)
+        cls.blobs = ByStamp('/tune_tracker/blobs', BlobArray, queue_size=20)
         cls.landmark_image = rospy.Publisher('/tune_landmark/image_raw', Image, queue_size=5)
-        cls.edges = Outputs('/tune_landmark/edges', Image)
-        cls.lines = Outputs('/tune_landmark/lines', LineArray)
-        cls.horizon = Outputs('/tune_landmark/horizon', Horizon)
-        cls.ranges = Outputs('/tune_landmark/color_ranges', ColorRangeArray)
+        cls.edges = ByStamp('/tune_landmark/edges', Image, queue_size=20)
+        cls.lines = ByStamp('/tune_landmark/lines', LineArray, queue_size=20)
+        cls.horizon = ByStamp('/tune_landmark/horizon', Horizon, queue_size=20)
+        cls.ranges = ByStamp('/tune_landmark/color_ranges', ColorRangeArray, queue_size=20)
         # Watching the overlay keeps the landmark node on the colour images whatever learning does.
-        cls.overlay = Outputs('/tune_landmark/landmark/debug_image', Image)
-        cls.tracker = Client('/tune_tracker/tracker', timeout=30)
-        cls.edge_detector = Client('/tune_landmark/edge_detector', timeout=30)
-        cls.landmark = Client('/tune_landmark/landmark', timeout=30)
+        cls.overlay = ByStamp('/tune_landmark/landmark/debug_image', Image, queue_size=20)
+        cls.tracker = Client('/tune_tracker/tracker', timeout=30 * SLOW)
+        cls.edge_detector = Client('/tune_landmark/edge_detector', timeout=30 * SLOW)
+        cls.landmark = Client('/tune_landmark/landmark', timeout=30 * SLOW)
         cls.stamp = rospy.Time(1000)
-        time.sleep(1.0)  # lazy subscriptions connect
+        # The nodelets subscribe lazily, once their outputs have a reader: frames are sent until
+        # each pipeline answers one, so that from then on every frame is sent exactly once
+        # (a frame sent twice would count twice for the tracker's tracks).
+        warm_up = BgrImage(W, H, (0, 0, 0))
+        cls.first_answer(cls.tracker_image, warm_up, [cls.blobs])
+        cls.first_answer(cls.landmark_image, warm_up, [cls.lines, cls.horizon, cls.edges, cls.overlay])
+
+    @classmethod
+    def first_answer(cls, publisher, image, outputs):
+        stamps = []
+
+        def answered():
+            return any(all(o.get(s) is not None for o in outputs) for s in stamps)
+        deadline = time.time() + 60 * SLOW
+        while time.time() < deadline:
+            cls.stamp += rospy.Duration(1.0 / 30)
+            stamps.append(cls.stamp)
+            publisher.publish(image.msg(stamps[-1]))
+            if wait_for(answered, 2 * SLOW, period_s=0.02):
+                return
+        raise AssertionError('no answer on %s to %d frames' % ([o.sub.name for o in outputs], len(stamps)))
 
     def forget_tracks(self):
         empty = BgrImage(W, H, (0, 0, 0))
@@ -76,23 +72,13 @@ class LiveTuningTest(unittest.TestCase):
 
     def track(self, image):
         stamp = self.next_stamp()
-        for _ in range(50):  # until the tracker has subscribed
-            self.tracker_image.publish(image.msg(stamp))
-            try:
-                return self.blobs.wait(stamp, 0.2)
-            except AssertionError:
-                pass
-        raise AssertionError('the tracker never answered')
+        self.tracker_image.publish(image.msg(stamp))
+        return self.blobs.require(stamp)
 
     def landmarks(self, image):
         stamp = self.next_stamp()
-        for _ in range(50):
-            self.landmark_image.publish(image.msg(stamp))
-            try:
-                return self.lines.wait(stamp, 0.3), self.horizon.wait(stamp, 0.3), self.edges.wait(stamp, 0.3)
-            except AssertionError:
-                pass
-        raise AssertionError('the landmark node never answered')
+        self.landmark_image.publish(image.msg(stamp))
+        return self.lines.require(stamp), self.horizon.require(stamp), self.edges.require(stamp)
 
     # --- Tracker -------------------------------------------------------------------------
     def test_tracker_min_area_px(self):
@@ -296,15 +282,10 @@ class LiveTuningTest(unittest.TestCase):
         self.landmark.update_configuration({'learning': False})
         self.landmarks(self.box_scene())  # hands back the configured ranges, resets the learner
         self.landmark.update_configuration({'learning': True, 'learning_blend': blend, 'learning_publish_period_s': 0.0})
-        stamp_before = self.ranges.last.header.stamp if self.ranges.last else None
-        self.landmarks(self.box_scene())
-        deadline = time.time() + 5
-        while time.time() < deadline:
-            last = self.ranges.last
-            if last is not None and last.header.stamp != stamp_before:
-                return next(r for r in last.ranges if r.name == 'red')
-            time.sleep(0.05)
-        raise AssertionError('no color_ranges after a frame with learning on')
+        lines, _, _ = self.landmarks(self.box_scene())
+        learned = self.ranges.wait(lines.header.stamp)  # the ranges learned on that frame carry its stamp
+        self.assertIsNotNone(learned, 'no color_ranges after a frame with learning on')
+        return next(r for r in learned.ranges if r.name == 'red')
 
     def test_landmark_learning_and_blend(self):
         configured_v_centre = (184 + 255) / 2.0
@@ -319,10 +300,10 @@ class LiveTuningTest(unittest.TestCase):
         # Learning off: the configured ranges come back.
         self.landmark.update_configuration({'learning': False})
         self.landmarks(self.box_scene())
-        deadline = time.time() + 5
-        while time.time() < deadline and any(r.source == 'learned' for r in self.ranges.last.ranges):
-            time.sleep(0.05)
-        red = next(r for r in self.ranges.last.ranges if r.name == 'red')
+        configured = wait_for(lambda: not any(r.source == 'learned' for r in self.ranges.latest().ranges) and
+                              self.ranges.latest(), 10 * SLOW)
+        self.assertTrue(configured, 'learning off, and the learned ranges stay')
+        red = next(r for r in configured.ranges if r.name == 'red')
         self.assertEqual((red.source, list(red.min), list(red.max)), ('config', [30, 85, 184], [150, 128, 255]))
         self.landmark.update_configuration({'learning': True, 'learning_blend': 0.2, 'learning_publish_period_s': 0.5})
 

@@ -7,6 +7,7 @@ same blobs (ids, classes, areas, boxes, centroids) and the ranges in use must be
 import json
 import os
 import subprocess
+import sys
 import tempfile
 import threading
 import time
@@ -14,35 +15,17 @@ import unittest
 
 import cv2
 import numpy as np
+import rosgraph
 import roslib.packages
 import rospy
 import rostest
 from rle_vision.msg import BlobArray, ColorRangeArray, Horizon
 from sensor_msgs.msg import Image
 
+sys.path.insert(0, __file__.rsplit('/', 1)[0])
+from waiting import SLOW, ByStamp, wait_for  # noqa: E402
+
 STAMP_OFFSET_S = 100.0  # ROS stamps of frame k: offset + k / fps (the CLI's: k / fps)
-
-
-class ByStamp:
-    def __init__(self, topic, msg_type):
-        self.lock = threading.Lock()
-        self.messages = {}
-        self.last = None
-        self.sub = rospy.Subscriber(topic, msg_type, self.callback, queue_size=50)
-
-    def callback(self, msg):
-        with self.lock:
-            self.messages[msg.header.stamp.to_nsec()] = msg
-            self.last = msg
-
-    def wait(self, stamp, timeout_s):
-        deadline = time.time() + timeout_s
-        while time.time() < deadline:
-            with self.lock:
-                if stamp.to_nsec() in self.messages:
-                    return self.messages[stamp.to_nsec()]
-            time.sleep(0.01)
-        return None
 
 
 def ranges_of(classes):
@@ -64,12 +47,11 @@ class SequenceEqualsNodeletsTest(unittest.TestCase):
                     frames.append(msg)
         # The first `count` frames that arrive, in order (the simulator keeps going).
         sub = rospy.Subscriber('/sim/image_raw', Image, on_image, queue_size=50)
-        deadline = time.time() + 90
-        while time.time() < deadline:
+
+        def enough():
             with lock:
-                if len(frames) >= count:
-                    break
-            time.sleep(0.1)
+                return len(frames) >= count
+        wait_for(enough, 90 * SLOW)
         sub.unregister()
         self.assertEqual(len(frames), count, 'the simulator sent %d of %d frames' % (len(frames), count))
         return frames
@@ -105,32 +87,36 @@ class SequenceEqualsNodeletsTest(unittest.TestCase):
         # learning). The nodelets subscribe once their outputs are listened to, all through
         # the manager's one connection to the image topic.
         outputs = (blobs, horizon, learned, active)
-        deadline = time.time() + 30
-        while time.time() < deadline and (image_pub.get_num_connections() < 1 or
-                                          any(o.sub.get_num_connections() < 1 for o in outputs)):
-            time.sleep(0.1)
-        self.assertGreaterEqual(image_pub.get_num_connections(), 1)
+
+        def edges_read():  # the landmark has subscribed to the edges (its inputs, with the image)
+            subscribers = dict(rosgraph.Master(rospy.get_name()).getSystemState()[1])
+            return bool(subscribers.get('/camera/edges'))
+        self.assertTrue(wait_for(lambda: image_pub.get_num_connections() >= 1 and edges_read() and
+                                 all(o.sub.get_num_connections() >= 1 for o in outputs), 30 * SLOW),
+                        'the pipeline never subscribed to the camera')
+        # Each nodelet subscribes to the image in its own connect callback, run on the manager's
+        # threads just after the connections above: a moment for those callbacks to run.
         time.sleep(1.0)
 
         in_use = []
         for k, msg in enumerate(frames):
-            with active.lock:
-                in_use.append(ranges_of_msg(active.last) if active.last else None)
+            last_active = active.latest()
+            in_use.append(ranges_of_msg(last_active) if last_active else None)
             stamp = rospy.Time.from_sec(STAMP_OFFSET_S + k / float(fps))
             msg.header.stamp = stamp
             image_pub.publish(msg)
-            self.assertIsNotNone(blobs.wait(stamp, 10), 'no blobs for frame %d' % k)
-            self.assertIsNotNone(horizon.wait(stamp, 10), 'no horizon for frame %d' % k)
+            self.assertIsNotNone(blobs.wait(stamp), 'no blobs for frame %d' % k)
+            self.assertIsNotNone(horizon.wait(stamp), 'no horizon for frame %d' % k)
             # Ranges learned on this frame are published after its horizon, on another
             # connection. Where the CLI changed them, wait for them, however long; elsewhere
             # give any a moment to show up (then the comparison below fails on them).
             cli_changed = k + 1 < count and cli[k + 1]['ranges'] != cli[k]['ranges']
-            if learned.wait(stamp, 10 if cli_changed else 0.3) is not None:
-                self.assertIsNotNone(active.wait(stamp, 10), 'the tracker did not take the ranges of frame %d' % k)
+            if learned.wait(stamp, 10 * SLOW if cli_changed else 0.3) is not None:
+                self.assertIsNotNone(active.wait(stamp), 'the tracker did not take the ranges of frame %d' % k)
 
         distinct_ranges = set()
         for k, line in enumerate(cli):
-            msg = blobs.messages[rospy.Time.from_sec(STAMP_OFFSET_S + k / float(fps)).to_nsec()]
+            msg = blobs.get(rospy.Time.from_sec(STAMP_OFFSET_S + k / float(fps)))
             ours = [(b.id, b.color, b.area, b.left, b.top, b.right, b.bottom) for b in msg.blobs]
             theirs = [(b['id'], b['color'], b['area'], b['left'], b['top'], b['right'], b['bottom']) for b in line['blobs']]
             self.assertEqual(ours, theirs, 'frame %d: blobs differ' % k)

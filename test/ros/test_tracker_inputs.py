@@ -2,8 +2,8 @@
 """rostest: the Tracker run as a standalone node, fed hand-made images. Bad input gets one clear
 throttled error and no crash; every supported encoding gives the known blob; colour ranges
 swap in over the color_ranges topic and broken ones are refused."""
+import sys
 import threading
-import time
 import unittest
 
 import rospy
@@ -11,6 +11,9 @@ import rostest
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import Image
 from rle_vision.msg import BlobArray, ColorRange, ColorRangeArray
+
+sys.path.insert(0, __file__.rsplit('/', 1)[0])
+from waiting import SLOW, wait_for, wait_stable  # noqa: E402
 
 WIDTH, HEIGHT = 64, 48
 RED_BGR = (40, 40, 210)      # inside the shipped 'red' YUV class
@@ -63,15 +66,26 @@ class TrackerInputsTest(unittest.TestCase):
         cls.pub_image = rospy.Publisher('cam/image_raw', Image, queue_size=10)
         cls.pub_ranges = rospy.Publisher('cam/color_ranges', ColorRangeArray, queue_size=1, latch=True)
         rospy.Subscriber('cam/blobs', BlobArray, cls.on_blobs, queue_size=100)
+        cls.active = []
         rospy.Subscriber('/rosout', Log, cls.on_log, queue_size=1000)
-        deadline = time.time() + 30
-        while cls.pub_image.get_num_connections() == 0 and time.time() < deadline:
-            time.sleep(0.1)  # the tracker subscribes lazily, once blobs has a subscriber
+        rospy.Subscriber('cam/tracker/active_color_ranges', ColorRangeArray, cls.on_active, queue_size=10)
+        # The tracker subscribes lazily, once blobs has a subscriber.
+        wait_for(lambda: cls.pub_image.get_num_connections() > 0, 30 * SLOW)
 
     @classmethod
     def on_blobs(cls, msg):
         with cls.lock:
             cls.blobs.append(msg)
+
+    @classmethod
+    def on_active(cls, msg):
+        with cls.lock:
+            cls.active.append(msg)
+
+    def active_names(self):
+        """The class names of the ranges the tracker uses (its latched active_color_ranges)."""
+        with self.lock:
+            return [r.name for r in self.active[-1].ranges] if self.active else None
 
     @classmethod
     def on_log(cls, msg):
@@ -83,29 +97,25 @@ class TrackerInputsTest(unittest.TestCase):
         image.header.stamp = rospy.Time.from_sec(stamp_s)
         self.pub_image.publish(image)
 
-    def wait_for_blobs(self, stamp_s, timeout=10.0):
-        deadline = time.time() + timeout
-        while time.time() < deadline:
+    def wait_for_blobs(self, stamp_s, timeout=10.0 * SLOW):
+        def found():
             with self.lock:
-                for msg in self.blobs:
-                    if abs(msg.header.stamp.to_sec() - stamp_s) < 1e-6:
-                        return msg
-            time.sleep(0.05)
-        self.fail('no blobs for the image stamped %.3f' % stamp_s)
+                return next((m for m in self.blobs if abs(m.header.stamp.to_sec() - stamp_s) < 1e-6), None)
+        msg = wait_for(found, timeout, period_s=0.05)
+        if msg is None:
+            self.fail('no blobs for the image stamped %.3f' % stamp_s)
+        return msg
 
-    def logs_matching(self, level, text, expected, timeout=10.0):
+    def logs_matching(self, level, text, expected, timeout=10.0 * SLOW):
         """The log messages of `level` containing `text`, once `expected` of them arrived (or the
-        timeout passed), plus a short settling time so that extra ones are counted too: /rosout
-        is another connection than blobs, and may arrive after them."""
-        deadline = time.time() + timeout
-        while time.time() < deadline:
+        timeout passed) and no more came for a second, so that extra ones are counted too:
+        /rosout is another connection than blobs, and may arrive after them."""
+        def matching():
             with self.lock:
-                if sum(1 for m in self.logs if m.level == level and text in m.msg) >= expected:
-                    break
-            time.sleep(0.05)
-        time.sleep(0.5)
-        with self.lock:
-            return [m for m in self.logs if m.level == level and text in m.msg]
+                return [m for m in self.logs if m.level == level and text in m.msg]
+        wait_for(lambda: len(matching()) >= expected, timeout, period_s=0.05)
+        wait_stable(lambda: len(matching()), timeout)
+        return matching()
 
     def assert_red_square(self, msg):
         self.assertEqual(len(msg.blobs), 1, msg.blobs)
@@ -164,19 +174,20 @@ class TrackerInputsTest(unittest.TestCase):
         green = ColorRange(name='field', space='RGB', min=[30, 120, 30], max=[70, 160, 70],
                            display_rgb=[0, 255, 0], min_area=1, source='learned')
         self.pub_ranges.publish(ColorRangeArray(ranges=[green]))
-        time.sleep(1.0)
+        self.assertTrue(wait_for(lambda: self.active_names() == ['field'], 10 * SLOW),
+                        'the tracker did not take the field range: it uses %s' % self.active_names())
         self.send(make_image('bgr8'), 500.0)
         msg = self.wait_for_blobs(500.0)
         self.assertEqual([b.color for b in msg.blobs], ['field'])
         self.assertEqual(msg.blobs[0].area, WIDTH * HEIGHT - SQUARE[2] * SQUARE[3])
         broken = ColorRange(name='x', space='LAB', min=[0, 0, 0], max=[255, 255, 255])
         self.pub_ranges.publish(ColorRangeArray(ranges=[broken]))
-        time.sleep(1.0)
+        errors = self.logs_matching(Log.ERROR, "unknown space 'LAB'", 1)  # refused, said so: the frame comes after
+        self.assertEqual(len(errors), 1)
         self.send(make_image('bgr8'), 501.0)
         msg = self.wait_for_blobs(501.0)
         self.assertEqual([b.color for b in msg.blobs], ['field'], 'a broken range set must not replace the good one')
-        errors = self.logs_matching(Log.ERROR, "unknown space 'LAB'", 1)
-        self.assertEqual(len(errors), 1)
+        self.assertEqual(self.active_names(), ['field'])
 
 
 if __name__ == '__main__':

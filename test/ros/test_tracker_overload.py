@@ -8,6 +8,7 @@ The frame time itself (no frame over 5 ms) is measured, not asserted: a test's t
 whatever else the machine runs. make bench-latency times this same overload through the running
 nodelet (its 'overload' rows); this test logs the figures it saw."""
 import re
+import sys
 import threading
 import time
 import unittest
@@ -20,8 +21,12 @@ from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import CameraInfo
 from rle_vision.msg import BlobArray
 
+sys.path.insert(0, __file__.rsplit('/', 1)[0])
+from waiting import SLOW, wait_for, wait_stable  # noqa: E402
+
 CLASSES = ('red', 'yellow', 'blue', 'magenta')
 WINDOW_S = 8.0
+MIN_FRAMES = 60  # checked in the window: 8 s at 30 Hz on a fast machine, fewer where the simulator is slower
 MAX_FRAME_MS = 5.0  # reported, not asserted
 MAX_REGIONS_PER_CLASS = 500  # tracker.launch's default
 
@@ -53,32 +58,30 @@ class TrackerOverloadTest(unittest.TestCase):
         log = rospy.Subscriber('/rosout', Log, on_log, queue_size=100)
         publishers = dict(rosgraph.Master(rospy.get_name()).getSystemState()[0]).get('/rosout', [])
         self.assertIn('/camera/tracker', publishers)
-        deadline = time.time() + 10
-        while time.time() < deadline and log.get_num_connections() < len(publishers):
-            time.sleep(0.05)
+        wait_for(lambda: log.get_num_connections() >= len(publishers), 10 * SLOW, period_s=0.05)
         self.assertGreaterEqual(log.get_num_connections(), len(publishers), 'not connected to every /rosout')
         rospy.Subscriber('/diagnostics', DiagnosticArray, on_diagnostics, queue_size=20)
         # Unbounded queues: a frame missing here must be one the tracker never published.
         rospy.Subscriber('/camera/blobs', BlobArray, on_blobs, queue_size=None)
-        deadline = time.time() + 30
-        while time.time() < deadline and not blobs:
-            time.sleep(0.05)
-        self.assertTrue(blobs, 'no blobs within 30 s')
+        self.assertTrue(wait_for(lambda: bool(blobs), 30 * SLOW, period_s=0.05), 'no blobs within %.0f s' % (30 * SLOW))
         rospy.Subscriber('/camera/camera_info', CameraInfo, on_info, queue_size=None)
         window_start = time.time()
-        time.sleep(WINDOW_S)
+        time.sleep(WINDOW_S)  # the window measured: every frame the simulator sends in it
         with lock:
             window = list(frames)
-        deadline = time.time() + 20  # the blobs of the window's last frames
-        while time.time() < deadline and window and window[-1] not in blobs:
-            time.sleep(0.05)
-        time.sleep(0.5)
+
+        def last_answered():
+            with lock:
+                return window and window[-1] in blobs
+        wait_for(last_answered, 20 * SLOW, period_s=0.05)  # the blobs of the window's last frames
+        # The warning comes on /rosout, another connection: counted once no more arrive.
+        wait_stable(lambda: len(warnings), 10 * SLOW)
         with lock:
             got = dict(blobs)
             logged = list(warnings)
             reports = list(statuses)
 
-        self.assertGreater(len(window), 0.8 * 30 * WINDOW_S, 'the simulator published %d frames' % len(window))
+        self.assertGreaterEqual(len(window), MIN_FRAMES, 'the simulator published %d frames in %.0f s' % (len(window), WINDOW_S))
         missing = [s for s in window if s not in got]
         self.assertEqual(missing, [], '%d of %d frames got no blobs' % (len(missing), len(window)))
         for s in window:

@@ -2,7 +2,6 @@
 """rostest: simulator -> Tracker nodelet in one manager. Checks blob values against the
 simulator's exact ground truth, frame by frame: headers, centroids, areas, boxes, stable ids,
 no false blobs."""
-import math
 import sys
 import threading
 import unittest
@@ -13,6 +12,7 @@ from rle_vision.msg import BlobArray, SceneTruth
 
 sys.path.insert(0, __file__.rsplit('/', 1)[0])
 from truth_matching import clear_objects, nearest_blob, perimeter, whole_objects  # noqa: E402
+from waiting import SLOW, wait_for  # noqa: E402
 
 FRAMES = 90
 
@@ -39,9 +39,7 @@ class TrackerPipelineTest(unittest.TestCase):
             return [(self.truth[s], self.blobs[s]) for s in stamps]
 
     def test_blobs_match_ground_truth(self):
-        deadline = rospy.Time.now() + rospy.Duration(60)
-        while len(self.paired_frames()) < FRAMES and rospy.Time.now() < deadline and not rospy.is_shutdown():
-            rospy.sleep(0.1)
+        wait_for(lambda: len(self.paired_frames()) >= FRAMES, 60 * SLOW)
         frames = self.paired_frames()
         self.assertGreaterEqual(len(frames), FRAMES, 'too few frames paired by stamp')
 

@@ -1,10 +1,12 @@
 """Helpers shared by the rostests: pairing outputs with simulator ground truth, and waiting
 for a paused bag's replay pipeline to connect."""
 import math
-import time
+import xmlrpc.client
 
 import rosgraph
 import rospy
+
+from waiting import wait_for
 
 
 def store_by_stamp(lock, table):
@@ -16,17 +18,34 @@ def store_by_stamp(lock, table):
     return callback
 
 
+def player_connections(player='/play'):
+    """Per topic, how many subscribers the player node is connected to (its bus info: the
+    master lists a subscriber before that subscriber's connection to the player is made)."""
+    try:
+        api = rosgraph.Master(rospy.get_name()).lookupNode(player)
+        _, _, bus_info = xmlrpc.client.ServerProxy(api).getBusInfo(rospy.get_name())
+    except Exception:  # noqa: BLE001 (the player is not up yet)
+        return {}
+    counts = {}
+    for connection in bus_info:
+        # [id, destination, direction, transport, topic, connected, ...]; 'o': we publish
+        if connection[2] == 'o' and (len(connection) < 6 or connection[5]):
+            counts[connection[4]] = counts.get(connection[4], 0) + 1
+    return counts
+
+
 def wait_until_wired(inputs, timeout_s):
-    """True once every topic in `inputs` has a subscriber other than this test and the paused
-    player's /play/pause_playback service is up."""
-    deadline = time.time() + timeout_s
-    while time.time() < deadline and not rospy.is_shutdown():
-        _, subscribers, services = rosgraph.Master(rospy.get_name()).getSystemState()
+    """True once every topic in `inputs` has a subscriber other than this test, the paused
+    player (/play) is connected to every subscriber of the inputs it publishes, and its
+    /play/pause_playback service is up: a frame played before then would be lost."""
+    def wired():
+        publishers, subscribers, services = rosgraph.Master(rospy.get_name()).getSystemState()
         nodes = {topic: set(names) - {rospy.get_name()} for topic, names in subscribers}
-        if all(nodes.get(t) for t in inputs) and any(s == '/play/pause_playback' for s, _ in services):
-            return True
-        time.sleep(0.2)
-    return False
+        played = [t for t, names in publishers if t in inputs and '/play' in names]
+        connected = player_connections()
+        return (all(nodes.get(t) for t in inputs) and any(s == '/play/pause_playback' for s, _ in services) and
+                all(connected.get(t, 0) >= len(nodes.get(t, ())) for t in played))
+    return bool(wait_for(wired, timeout_s, period_s=0.2))
 
 
 def nearest_blob(blobs, obj, max_distance):
