@@ -31,6 +31,7 @@ namespace rle_vision {
 class SimulatorNodelet : public nodelet::Nodelet {
  private:
   void onInit() override;
+  void scheduleFirstFrame(ros::NodeHandle& pnh);
   void timerCb(const ros::TimerEvent&);
   sensor_msgs::CameraInfo cameraInfo(const std_msgs::Header& header) const;
   SceneTruth truthMsg(const SimFrame& frame, const std_msgs::Header& header) const;
@@ -123,6 +124,13 @@ void SimulatorNodelet::onInit() {
     s.add("frames published", frame_index_.load());
   });
   diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
+  scheduleFirstFrame(pnh);
+}
+
+// Waiting lets recorders and lazily subscribing pipelines connect before frame 0: first for the
+// given number of image_raw subscribers (however long a loaded machine takes to start them),
+// then start_delay_s.
+void SimulatorNodelet::scheduleFirstFrame(ros::NodeHandle& pnh) {
   double start_delay_s = 0;
   pnh.param("start_delay_s", start_delay_s, 0.0);
   if (!std::isfinite(start_delay_s) || start_delay_s < 0) {
@@ -135,9 +143,6 @@ void SimulatorNodelet::onInit() {
     NODELET_WARN("~start_after_subscribers must be >= 0, got %d: not waiting for subscribers", start_after_subscribers);
     start_after_subscribers = 0;
   }
-  // Waiting lets recorders and lazily subscribing pipelines connect before frame 0: first for
-  // the given number of image_raw subscribers (however long a loaded machine takes to start
-  // them), then start_delay_s.
   const auto start = [this, start_delay_s] {
     start_timer_ = getNodeHandle().createWallTimer(ros::WallDuration(std::max(start_delay_s, 1e-3)),
         [this](const ros::WallTimerEvent&) {
@@ -149,11 +154,12 @@ void SimulatorNodelet::onInit() {
     return;
   }
   NODELET_INFO("frame 0 waits for %d image_raw subscribers", start_after_subscribers);
-  subscribers_timer_ = nh.createWallTimer(ros::WallDuration(0.05), [this, start, start_after_subscribers](const ros::WallTimerEvent&) {
-    if (static_cast<int>(pub_camera_.getNumSubscribers()) < start_after_subscribers) return;
-    subscribers_timer_.stop();
-    start();
-  });
+  subscribers_timer_ = getNodeHandle().createWallTimer(ros::WallDuration(0.05),
+      [this, start, start_after_subscribers](const ros::WallTimerEvent&) {
+        if (static_cast<int>(pub_camera_.getNumSubscribers()) < start_after_subscribers) return;
+        subscribers_timer_.stop();
+        start();
+      });
 }
 
 sensor_msgs::CameraInfo SimulatorNodelet::cameraInfo(const std_msgs::Header& header) const {
