@@ -112,15 +112,17 @@ class BagReplayTest(unittest.TestCase):
             # have no obstacles (a loaded machine can take longer than any fixed delay).
             self.assertTrue(wait_until_wired(REPLAY_INPUTS, 60 * SLOW), 'the replay pipeline never connected')
             rospy.ServiceProxy('/play/pause_playback', SetBool)(False)
+            # Every frame's blobs, and the obstacles of all but at most two (see below).
             done = self.wait_for(lambda: set(live['blobs']) <= set(replay['blobs']) and
-                                 set(live['obstacles']) <= set(replay['obstacles']), 60 * SLOW)
+                                 len(self.common('obstacles')) >= min(len(live['obstacles']), FRAMES - 2), 60 * SLOW)
             # The landmark node, at low priority, may still be working on the last frames.
             self.wait_for(lambda: len(self.common('lines')) >= FRAMES // 2 and
                           len(self.common('horizon')) >= FRAMES // 2, 30 * SLOW)
         finally:
             os.killpg(play.pid, signal.SIGINT)
             play.wait(timeout=30 * SLOW)
-        self.assertTrue(done, 'the replay gave %d blob messages of %d' % (len(replay['blobs']), len(live['blobs'])))
+        self.assertTrue(done, 'the replay gave %d blob messages of %d, %d obstacle messages of %d' % (
+            len(replay['blobs']), len(live['blobs']), len(replay['obstacles']), len(live['obstacles'])))
 
         with self.lock:
             compared = {}
