@@ -4,6 +4,10 @@ DURATION ?= 0
 ARGS ?=
 JOBS ?= 2
 export JOBS
+# RECORD=1 make bench / eval / bench-latency: write bench/results/ (the committed figures) and
+# the docs' tables; by default they write the git-ignored bench/measured/.
+RECORD ?= 0
+export RECORD
 
 .PHONY: all deps build demo test test-readme test-asan test-core test-install fuzz bench eval bench-latency screenshot clean
 

@@ -5,16 +5,17 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <string>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc/fast_line_detector.hpp>
 
-#include "benchmark_frame.h"
+#include "eval/benchmark_frame.h"
 #include "harness.h"
-#include "line_matching.h"
-#include "rle_vision/landmark_detector.h"
+#include "eval/line_matching.h"
+#include "rle_vision/landmark/landmark_detector.h"
 
 using namespace rle_vision;
 
@@ -138,180 +139,226 @@ std::vector<std::pair<std::string, double>> benchRealFrames(const std::string& d
           {"real_frame_houghp_ms", houghp}};
 }
 
-}  // namespace
+// Everything measured on the simulator frames: per-frame medians of each method's time, and the
+// line scores against the exact edges.
+struct SimulatorRun {
+  std::vector<double> sobel, opencv_sobel, opencv_derivatives, total, hough, objects, hough_only;
+  std::vector<double> votes_only, no_ridge, paper_pairs, houghp, houghs, fld, lsd, horizon_err;
+  MatchScore ours, opencv, no_ridge_score, paper_pairs_score, fld_score, lsd_score;
+  uint64_t pairs_rle = 0, pairs_global = 0;
+};
 
-// rle_vision_bench_landmark [SOURCE_DIR [JSON [REAL_FRAMES_DIR]]]
-int main(int argc, char** argv) {
-  const std::string source_dir = argc > 1 ? argv[1] : RLE_VISION_SOURCE_DIR;
-  const std::string json_path = argc > 2 ? argv[2] : source_dir + "/bench/results/landmark.json";
-  bench::pinToOneCpu();
-  cv::setNumThreads(1);
-
-  const SceneSimulator simulator(loadSceneConfig(source_dir + "/config/scene_default.yaml"));
-  std::vector<SimFrame> frames;
-  for (int i = 0; i < kFrames; ++i) frames.push_back(simulator.render(7 * i, 7 * i / 30.0));
-
+// What each frame is run through (buffers kept across frames, as a node keeps them).
+struct Methods {
   LandmarkOptions options;
   LandmarkDetector detector;
   Sobel5 sobel5;
   LandmarkResult result;
   EdgeObjectFinder finder;
   RleHough rle_hough;
-  std::vector<double> objects_ms, hough_only_ms;
-  std::vector<double> sobel_ms, opencv_sobel_ms, opencv_derivatives_ms, total_ms, hough_ms, houghp_ms, houghs_ms, horizon_err;
-  std::vector<double> votes_only_ms, no_ridge_ms, paper_pairs_ms, fld_ms, lsd_ms;
-  MatchScore ours, opencv, no_ridge, paper_pairs, fld_score, lsd_score;
   const cv::Ptr<cv::ximgproc::FastLineDetector> fld = cv::ximgproc::createFastLineDetector();
   const cv::Ptr<cv::LineSegmentDetector> lsd = cv::createLineSegmentDetector(cv::LSD_REFINE_STD);
-  cv::Mat grey;
-  uint64_t pairs_rle = 0, pairs_global = 0;
-  cv::Mat edges, cv_edges, gx, gy;
+  cv::Mat grey, edges, cv_edges, gx, gy;
   OpencvSobelBuffers cv_buffers;
-  for (const SimFrame& frame : frames) {
-    sobel_ms.push_back(bench::medianMs([&] { sobel5.edges(frame.image, options.edge_gain, &edges); }, 30, 3));
-    opencv_sobel_ms.push_back(bench::medianMs([&] { opencvSobel(frame.image, options.edge_gain, &cv_buffers, &cv_edges); }, 10, 2));
-    // cv::Sobel's two derivative passes alone (no magnitude): a lower bound for OpenCV.
-    opencv_derivatives_ms.push_back(bench::medianMs([&] {
-      cv::Sobel(frame.image, gx, CV_16S, 1, 0, 5);
-      cv::Sobel(frame.image, gy, CV_16S, 0, 1, 5);
-    }, 10, 2));
-    // The whole landmark step, and the Hough + horizon step alone on the same edge image.
-    total_ms.push_back(bench::medianMs([&] { detector.detectInImage(frame.image, options, &result); }, 15, 2));
-    hough_ms.push_back(bench::medianMs([&] { detector.detectInEdges(edges, options, &result); }, 15, 2));
-    // Its two parts: the RLE of the edge image into edge objects, and the Hough on them.
-    objects_ms.push_back(bench::medianMs([&] { finder.find(edges, options.objects); }, 15, 2));
-    std::vector<DetectedLine> hough_lines;
-    HoughStats hough_stats;
-    hough_only_ms.push_back(bench::medianMs([&] {
-      rle_hough.detect(finder, edges, options.objects.gray_threshold, options.hough, &hough_lines, &hough_stats);
-    }, 15, 2));
-    // What a 5x speed-up over HoughLinesP has to fit in (README): the first sampling round's
-    // votes and seed ordering, no peak refined (no failed peaks allowed ends it there); the Hough refining by least squares on the run pixels instead
-    // of the sub-pixel ridge fit; and with the paper's own pair count (eq. 4, margin 1, not 3).
-    HoughOptions votes_only = options.hough, paper = options.hough;
-    votes_only.max_failed_peaks = 0;
-    paper.sampling_margin = 1;
-    votes_only_ms.push_back(bench::medianMs([&] {
-      rle_hough.detect(finder, edges, options.objects.gray_threshold, votes_only, &hough_lines, &hough_stats);
-    }, 15, 2));
-    std::vector<DetectedLine> no_ridge_lines, paper_lines;
-    no_ridge_ms.push_back(bench::medianMs([&] {
-      rle_hough.detectOnRuns(finder, edges.cols, edges.rows, options.hough, &no_ridge_lines, &hough_stats);
-    }, 15, 2));
-    paper_pairs_ms.push_back(bench::medianMs([&] {
-      rle_hough.detect(finder, edges, options.objects.gray_threshold, paper, &paper_lines, &hough_stats);
-    }, 15, 2));
-    pairs_rle += result.hough.sample_pairs;
-    pairs_global += result.hough.global_sample_pairs;
-    // OpenCV's Hough on the same edge image, thresholded at our gray threshold.
-    cv::Mat binary = edges >= options.objects.gray_threshold;
-    std::vector<cv::Vec4i> segments;
-    houghp_ms.push_back(bench::medianMs([&] {
-      cv::HoughLinesP(binary, segments, 1, CV_PI / 180, 30, options.hough.min_line_length_px, options.hough.max_gap_px);
-    }, 5, 1));
-    std::vector<cv::Vec2f> standard;
-    houghs_ms.push_back(bench::medianMs([&] { cv::HoughLines(binary, standard, 1, CV_PI / 180, 60); }, 5, 1));
-    // The line detectors from the colour frame, as ours (grey conversion included), defaults.
-    std::vector<cv::Vec4f> fld_segments, lsd_segments;
-    fld_ms.push_back(bench::medianMs([&] {
-      cv::cvtColor(frame.image, grey, cv::COLOR_BGR2GRAY);
-      fld->detect(grey, fld_segments);
-    }, 5, 1));
-    lsd_ms.push_back(bench::medianMs([&] {
-      cv::cvtColor(frame.image, grey, cv::COLOR_BGR2GRAY);
-      lsd->detect(grey, lsd_segments);
-    }, 3, 1));
+};
 
-    // Recall over the clear edges (contrast >= 30) of the minimum length; a detection is
-    // correct along any visible edge (faint ones too, and shorter ones).
-    std::vector<Segment> truth, any_truth;
-    for (const EdgeTruth& e : frame.edges) {
-      if (std::hypot(e.x2 - e.x1, e.y2 - e.y1) >= options.hough.min_line_length_px) truth.push_back({e.x1, e.y1, e.x2, e.y2});
-    }
-    for (const EdgeTruth& e : frame.faint_edges) {
-      if (std::hypot(e.x2 - e.x1, e.y2 - e.y1) >= 10) any_truth.push_back({e.x1, e.y1, e.x2, e.y2});
-    }
-    // Recall / precision within 2 deg and 2 px at the truth segment (the segments' own
-    // accuracy, without the intercept's extrapolation).
-    ours += scoreSegments(result.lines, truth, any_truth, 2.0, 2.0);
-    opencv += scoreSegments(toLines(segments), truth, any_truth, 2.0, 2.0);
-    fld_score += scoreSegments(toLines(fld_segments, options.hough.min_line_length_px), truth, any_truth, 2.0, 2.0);
-    lsd_score += scoreSegments(toLines(lsd_segments, options.hough.min_line_length_px), truth, any_truth, 2.0, 2.0);
-    no_ridge += scoreSegments(no_ridge_lines, truth, any_truth, 2.0, 2.0);
-    paper_pairs += scoreSegments(paper_lines, truth, any_truth, 2.0, 2.0);
-    if (result.horizon.found && frame.horizon_visible) {
-      horizon_err.push_back(lineAngleDifference(result.horizon.line.theta, frame.horizon.theta) * 180 / M_PI);
-    }
+// The lines each method found on one frame, for scoring.
+struct FrameLines {
+  std::vector<DetectedLine> no_ridge, paper_pairs;
+  std::vector<cv::Vec4i> houghp;
+  std::vector<cv::Vec4f> fld, lsd;
+};
+
+// Our Sobel against OpenCV's, then our landmark step, whole and in parts.
+void timeOurs(const SimFrame& frame, Methods& m, SimulatorRun* run, FrameLines* lines) {
+  run->sobel.push_back(bench::medianMs([&] { m.sobel5.edges(frame.image, m.options.edge_gain, &m.edges); }, 30, 3));
+  run->opencv_sobel.push_back(bench::medianMs([&] { opencvSobel(frame.image, m.options.edge_gain, &m.cv_buffers, &m.cv_edges); }, 10, 2));
+  // cv::Sobel's two derivative passes alone (no magnitude): a lower bound for OpenCV.
+  run->opencv_derivatives.push_back(bench::medianMs([&] {
+    cv::Sobel(frame.image, m.gx, CV_16S, 1, 0, 5);
+    cv::Sobel(frame.image, m.gy, CV_16S, 0, 1, 5);
+  }, 10, 2));
+  // The whole landmark step, and the Hough + horizon step alone on the same edge image.
+  run->total.push_back(bench::medianMs([&] { m.detector.detectInImage(frame.image, m.options, &m.result); }, 15, 2));
+  run->hough.push_back(bench::medianMs([&] { m.detector.detectInEdges(m.edges, m.options, &m.result); }, 15, 2));
+  // Its two parts: the RLE of the edge image into edge objects, and the Hough on them.
+  run->objects.push_back(bench::medianMs([&] { m.finder.find(m.edges, m.options.objects); }, 15, 2));
+  std::vector<DetectedLine> hough_lines;
+  HoughStats stats;
+  const uint8_t ridge = m.options.objects.gray_threshold;
+  run->hough_only.push_back(bench::medianMs([&] {
+    m.rle_hough.detect(m.finder, m.edges, ridge, m.options.hough, &hough_lines, &stats);
+  }, 15, 2));
+  // What a 5x speed-up over HoughLinesP has to fit in (docs/performance.md): the first sampling round's
+  // votes and seed ordering, no peak refined (no failed peaks allowed ends it there); the
+  // Hough refining by least squares on the run pixels instead of the sub-pixel ridge fit; and
+  // with the paper's own pair count (eq. 4, margin 1, not 3).
+  HoughOptions votes_only = m.options.hough, paper = m.options.hough;
+  votes_only.max_failed_peaks = 0;
+  paper.sampling_margin = 1;
+  run->votes_only.push_back(bench::medianMs([&] {
+    m.rle_hough.detect(m.finder, m.edges, ridge, votes_only, &hough_lines, &stats);
+  }, 15, 2));
+  run->no_ridge.push_back(bench::medianMs([&] {
+    m.rle_hough.detectOnRuns(m.finder, m.edges.cols, m.edges.rows, m.options.hough, &lines->no_ridge, &stats);
+  }, 15, 2));
+  run->paper_pairs.push_back(bench::medianMs([&] {
+    m.rle_hough.detect(m.finder, m.edges, ridge, paper, &lines->paper_pairs, &stats);
+  }, 15, 2));
+  run->pairs_rle += m.result.hough.sample_pairs;
+  run->pairs_global += m.result.hough.global_sample_pairs;
+}
+
+// OpenCV's Hough on the same edge image (thresholded at our gray threshold), and the line
+// detectors from the colour frame, as ours (grey conversion included), defaults.
+void timePeers(const SimFrame& frame, Methods& m, SimulatorRun* run, FrameLines* lines) {
+  cv::Mat binary = m.edges >= m.options.objects.gray_threshold;
+  run->houghp.push_back(bench::medianMs([&] {
+    cv::HoughLinesP(binary, lines->houghp, 1, CV_PI / 180, 30, m.options.hough.min_line_length_px, m.options.hough.max_gap_px);
+  }, 5, 1));
+  std::vector<cv::Vec2f> standard;
+  run->houghs.push_back(bench::medianMs([&] { cv::HoughLines(binary, standard, 1, CV_PI / 180, 60); }, 5, 1));
+  run->fld.push_back(bench::medianMs([&] {
+    cv::cvtColor(frame.image, m.grey, cv::COLOR_BGR2GRAY);
+    m.fld->detect(m.grey, lines->fld);
+  }, 5, 1));
+  run->lsd.push_back(bench::medianMs([&] {
+    cv::cvtColor(frame.image, m.grey, cv::COLOR_BGR2GRAY);
+    m.lsd->detect(m.grey, lines->lsd);
+  }, 3, 1));
+}
+
+// Recall over the clear edges (contrast >= 30) of the minimum length; a detection is correct
+// along any visible edge (faint ones too, and shorter ones). Within 2 deg and 2 px at the truth
+// segment (the segments' own accuracy, without the intercept's extrapolation).
+void scoreFrame(const SimFrame& frame, const Methods& m, const FrameLines& lines, SimulatorRun* run) {
+  const double min_length = m.options.hough.min_line_length_px;
+  std::vector<Segment> truth, any_truth;
+  for (const EdgeTruth& e : frame.edges) {
+    if (std::hypot(e.x2 - e.x1, e.y2 - e.y1) >= min_length) truth.push_back({e.x1, e.y1, e.x2, e.y2});
   }
+  for (const EdgeTruth& e : frame.faint_edges) {
+    if (std::hypot(e.x2 - e.x1, e.y2 - e.y1) >= 10) any_truth.push_back({e.x1, e.y1, e.x2, e.y2});
+  }
+  run->ours += scoreSegments(m.result.lines, truth, any_truth, 2.0, 2.0);
+  run->opencv += scoreSegments(toLines(lines.houghp), truth, any_truth, 2.0, 2.0);
+  run->fld_score += scoreSegments(toLines(lines.fld, min_length), truth, any_truth, 2.0, 2.0);
+  run->lsd_score += scoreSegments(toLines(lines.lsd, min_length), truth, any_truth, 2.0, 2.0);
+  run->no_ridge_score += scoreSegments(lines.no_ridge, truth, any_truth, 2.0, 2.0);
+  run->paper_pairs_score += scoreSegments(lines.paper_pairs, truth, any_truth, 2.0, 2.0);
+  if (m.result.horizon.found && frame.horizon_visible) {
+    run->horizon_err.push_back(lineAngleDifference(m.result.horizon.line.theta, frame.horizon.theta) * 180 / M_PI);
+  }
+}
 
-  const double sobel = median(sobel_ms), cv_sobel = median(opencv_sobel_ms), total = median(total_ms);
-  const double cv_derivatives = median(opencv_derivatives_ms);
-  const double hough = median(hough_ms), houghp = median(houghp_ms), houghs = median(houghs_ms);
-  const double objects = median(objects_ms), hough_only = median(hough_only_ms);
+SimulatorRun runSimulatorFrames(const std::vector<SimFrame>& frames) {
+  Methods methods;
+  SimulatorRun run;
+  for (const SimFrame& frame : frames) {
+    FrameLines lines;
+    timeOurs(frame, methods, &run, &lines);
+    timePeers(frame, methods, &run, &lines);
+    scoreFrame(frame, methods, lines, &run);
+  }
+  return run;
+}
+
+// The medians printed and written.
+std::vector<std::pair<std::string, double>> summarise(const SimulatorRun& r) {
+  const double hough = median(r.hough), houghp = median(r.houghp), hough_only = median(r.hough_only);
+  return {{"sobel_ms", median(r.sobel)},
+          {"opencv_sobel_ms", median(r.opencv_sobel)},
+          {"opencv_sobel_derivatives_only_ms", median(r.opencv_derivatives)},
+          {"landmark_total_ms", median(r.total)},
+          {"hough_ms", hough},
+          {"opencv_houghp_ms", houghp},
+          {"opencv_hough_ms", median(r.houghs)},
+          {"speedup_vs_houghp", houghp / hough},
+          {"edge_objects_ms", median(r.objects)},
+          {"hough_only_ms", hough_only},
+          {"speedup_vs_houghp_hough_only", houghp / hough_only},
+          {"recall", r.ours.recall()},
+          {"precision", r.ours.precision()},
+          {"opencv_recall", r.opencv.recall()},
+          {"opencv_precision", r.opencv.precision()},
+          {"fld_ms", median(r.fld)},
+          {"fld_recall", r.fld_score.recall()},
+          {"fld_precision", r.fld_score.precision()},
+          {"lsd_ms", median(r.lsd)},
+          {"lsd_recall", r.lsd_score.recall()},
+          {"lsd_precision", r.lsd_score.precision()},
+          {"sample_pairs_rle", double(r.pairs_rle) / kFrames},
+          {"sample_pairs_global", double(r.pairs_global) / kFrames},
+          {"hough_votes_only_ms", median(r.votes_only)},
+          {"hough_no_ridge_ms", median(r.no_ridge)},
+          {"recall_no_ridge", r.no_ridge_score.recall()},
+          {"hough_margin1_ms", median(r.paper_pairs)},
+          {"recall_margin1", r.paper_pairs_score.recall()},
+          {"horizon_err_deg_median", r.horizon_err.empty() ? -1.0 : median(r.horizon_err)}};
+}
+
+void printTimes(const std::map<std::string, double>& v) {
+  const double sobel = v.at("sobel_ms"), total = v.at("landmark_total_ms"), hough = v.at("hough_ms");
+  const double houghp = v.at("opencv_houghp_ms"), hough_only = v.at("hough_only_ms"), objects = v.at("edge_objects_ms");
   std::printf("rle_vision landmark benchmark: %d simulator frames 640x480 (config/scene_default.yaml, walking gait)\n", kFrames);
   std::printf("medians over frames of per-frame medians, one thread pinned to one CPU\n");
   std::printf("  %-46s %8.3f ms\n", "our 5x5 Sobel (3 channels, max magnitude)", sobel);
-  std::printf("  %-46s %8.3f ms   (ours %.1fx faster)\n", "OpenCV cv::Sobel ksize 5, same job", cv_sobel, cv_sobel / sobel);
-  std::printf("  %-46s %8.3f ms   (ours %.1fx faster)\n", "OpenCV cv::Sobel x and y only (no magnitude)", cv_derivatives, cv_derivatives / sobel);
-  const double fld_time = median(fld_ms), lsd_time = median(lsd_ms);
-  std::printf("  %-46s %8.3f ms   (docs/DESIGN.md target <= 3)\n", "landmark total: Sobel + RLE Hough + horizon", total);
-  printPeer("cvtColor + FastLineDetector (defaults)", fld_time, total);
-  printPeer("cvtColor + LSD (LSD_REFINE_STD)", lsd_time, total);
+  std::printf("  %-46s %8.3f ms   (ours %.1fx faster)\n", "OpenCV cv::Sobel ksize 5, same job", v.at("opencv_sobel_ms"),
+              v.at("opencv_sobel_ms") / sobel);
+  std::printf("  %-46s %8.3f ms   (ours %.1fx faster)\n", "OpenCV cv::Sobel x and y only (no magnitude)",
+              v.at("opencv_sobel_derivatives_only_ms"), v.at("opencv_sobel_derivatives_only_ms") / sobel);
+  std::printf("  %-46s %8.3f ms   (target <= 3)\n", "landmark total: Sobel + RLE Hough + horizon", total);
+  printPeer("cvtColor + FastLineDetector (defaults)", v.at("fld_ms"), total);
+  printPeer("cvtColor + LSD (LSD_REFINE_STD)", v.at("lsd_ms"), total);
   std::printf("  %-46s %8.3f ms\n", "RLE Hough + horizon on the edge image", hough);
   std::printf("  %-46s %8.3f ms\n", "  of which: RLE into edge objects", objects);
   std::printf("  %-46s %8.3f ms\n", "  of which: the Hough on the edge objects", hough_only);
   std::printf("  %-46s %8.3f ms   (ours %.1fx faster in all, %.1fx the Hough alone)\n", "cv::HoughLinesP on the same edge image",
               houghp, houghp / hough, houghp / hough_only);
-  std::printf("  %-46s %8.3f ms\n", "cv::HoughLines on the same edge image", houghs);
-  std::printf("  line recall / precision, ours: %.3f / %.3f  (%d truth edges >= 30 px)\n", ours.recall(), ours.precision(), ours.truths);
-  std::printf("  line recall / precision, HoughLinesP: %.3f / %.3f\n", opencv.recall(), opencv.precision());
-  std::printf("  line recall / precision, FastLineDetector: %.3f / %.3f (its segments >= %.0f px)\n", fld_score.recall(),
-              fld_score.precision(), options.hough.min_line_length_px);
-  std::printf("  line recall / precision, LSD: %.3f / %.3f (the same)\n", lsd_score.recall(), lsd_score.precision());
-  const double votes_only = median(votes_only_ms), no_ridge_hough = median(no_ridge_ms), paper_hough = median(paper_pairs_ms);
-  std::printf("  5x HoughLinesP means <= %.3f ms for the RLE and the Hough; of it, before any refinement:\n", houghp / 5);
-  std::printf("  %-46s %8.3f ms\n", "  the RLE into edge objects", objects);
-  std::printf("  %-46s %8.3f ms\n", "  first sampling round: votes, seeds ordered", votes_only);
-  std::printf("  %-46s %8.3f ms   (recall / precision %.3f / %.3f)\n", "the Hough without the sub-pixel ridge fit", no_ridge_hough,
-              no_ridge.recall(), no_ridge.precision());
-  std::printf("  %-46s %8.3f ms   (recall / precision %.3f / %.3f)\n", "the Hough with eq. 4's pairs at margin 1", paper_hough,
-              paper_pairs.recall(), paper_pairs.precision());
-  std::printf("  sample pairs per frame: RLE per object %.0f, global random Hough (eq. 4) %.0f\n",
-              double(pairs_rle) / kFrames, double(pairs_global) / kFrames);
-  std::printf("  horizon angle error, median: %.3f deg over %zu frames\n",
-              horizon_err.empty() ? -1.0 : median(horizon_err), horizon_err.size());
-  std::vector<std::pair<std::string, double>> real;
-  if (argc > 3) real = benchRealFrames(argv[3]);
-  std::vector<std::pair<std::string, double>> values = {{"sobel_ms", sobel},
-                               {"opencv_sobel_ms", cv_sobel},
-                               {"opencv_sobel_derivatives_only_ms", cv_derivatives},
-                               {"landmark_total_ms", total},
-                               {"hough_ms", hough},
-                               {"opencv_houghp_ms", houghp},
-                               {"opencv_hough_ms", houghs},
-                               {"speedup_vs_houghp", houghp / hough},
-                               {"edge_objects_ms", objects},
-                               {"hough_only_ms", hough_only},
-                               {"speedup_vs_houghp_hough_only", houghp / hough_only},
-                               {"recall", ours.recall()},
-                               {"precision", ours.precision()},
-                               {"opencv_recall", opencv.recall()},
-                               {"opencv_precision", opencv.precision()},
-                               {"fld_ms", fld_time},
-                               {"fld_recall", fld_score.recall()},
-                               {"fld_precision", fld_score.precision()},
-                               {"lsd_ms", lsd_time},
-                               {"lsd_recall", lsd_score.recall()},
-                               {"lsd_precision", lsd_score.precision()},
-                               {"sample_pairs_rle", double(pairs_rle) / kFrames},
-                               {"sample_pairs_global", double(pairs_global) / kFrames},
-                               {"hough_votes_only_ms", votes_only},
-                               {"hough_no_ridge_ms", no_ridge_hough},
-                               {"recall_no_ridge", no_ridge.recall()},
-                               {"hough_margin1_ms", paper_hough},
-                               {"recall_margin1", paper_pairs.recall()},
-                               {"horizon_err_deg_median", horizon_err.empty() ? -1.0 : median(horizon_err)}};
-  values.insert(values.end(), real.begin(), real.end());
+  std::printf("  %-46s %8.3f ms\n", "cv::HoughLines on the same edge image", v.at("opencv_hough_ms"));
+}
+
+void printAccuracy(const SimulatorRun& r, const std::map<std::string, double>& v, double min_length) {
+  std::printf("  line recall / precision, ours: %.3f / %.3f  (%d truth edges >= 30 px)\n", r.ours.recall(), r.ours.precision(),
+              r.ours.truths);
+  std::printf("  line recall / precision, HoughLinesP: %.3f / %.3f\n", r.opencv.recall(), r.opencv.precision());
+  std::printf("  line recall / precision, FastLineDetector: %.3f / %.3f (its segments >= %.0f px)\n", r.fld_score.recall(),
+              r.fld_score.precision(), min_length);
+  std::printf("  line recall / precision, LSD: %.3f / %.3f (the same)\n", r.lsd_score.recall(), r.lsd_score.precision());
+  std::printf("  5x HoughLinesP means <= %.3f ms for the RLE and the Hough; of it, before any refinement:\n",
+              v.at("opencv_houghp_ms") / 5);
+  std::printf("  %-46s %8.3f ms\n", "  the RLE into edge objects", v.at("edge_objects_ms"));
+  std::printf("  %-46s %8.3f ms\n", "  first sampling round: votes, seeds ordered", v.at("hough_votes_only_ms"));
+  std::printf("  %-46s %8.3f ms   (recall / precision %.3f / %.3f)\n", "the Hough without the sub-pixel ridge fit",
+              v.at("hough_no_ridge_ms"), r.no_ridge_score.recall(), r.no_ridge_score.precision());
+  std::printf("  %-46s %8.3f ms   (recall / precision %.3f / %.3f)\n", "the Hough with eq. 4's pairs at margin 1",
+              v.at("hough_margin1_ms"), r.paper_pairs_score.recall(), r.paper_pairs_score.precision());
+  std::printf("  sample pairs per frame: RLE per object %.0f, global random Hough (eq. 4) %.0f\n", v.at("sample_pairs_rle"),
+              v.at("sample_pairs_global"));
+  std::printf("  horizon angle error, median: %.3f deg over %zu frames\n", v.at("horizon_err_deg_median"), r.horizon_err.size());
+}
+
+}  // namespace
+
+// rle_vision_bench_landmark [SOURCE_DIR [JSON [REAL_FRAMES_DIR]]]
+int main(int argc, char** argv) {
+  const std::string source_dir = argc > 1 ? argv[1] : RLE_VISION_SOURCE_DIR;
+  const std::string json_path = argc > 2 ? argv[2] : source_dir + "/bench/measured/landmark.json";
+  bench::pinToOneCpu();
+  cv::setNumThreads(1);
+
+  const SceneSimulator simulator(loadSceneConfig(source_dir + "/config/scene_default.yaml"));
+  std::vector<SimFrame> frames;
+  for (int i = 0; i < kFrames; ++i) frames.push_back(simulator.render(7 * i, 7 * i / 30.0));
+  const SimulatorRun run = runSimulatorFrames(frames);
+  std::vector<std::pair<std::string, double>> values = summarise(run);
+  const std::map<std::string, double> by_key(values.begin(), values.end());
+  printTimes(by_key);
+  printAccuracy(run, by_key, LandmarkOptions().hough.min_line_length_px);
+  if (argc > 3) {
+    const std::vector<std::pair<std::string, double>> real = benchRealFrames(argv[3]);
+    values.insert(values.end(), real.begin(), real.end());
+  }
   bench::writeJson(json_path, values);
   std::printf("wrote %s\n", json_path.c_str());
   return 0;

@@ -10,16 +10,16 @@
 
 #include <opencv2/core.hpp>
 
-#include "benchmark_frame.h"
+#include "eval/benchmark_frame.h"
 #include "harness.h"
-#include "opencv_pipeline.h"
-#include "rle_vision/blob_tracker.h"
-#include "rle_vision/color_calibration.h"
-#include "rle_vision/color_convert.h"
-#include "rle_vision/color_tracker.h"
-#include "rle_vision/segmenter.h"
-#include "rle_vision/shared_color_table.h"
-#include "rle_vision/yolo_labels.h"
+#include "eval/opencv_pipeline.h"
+#include "rle_vision/tracking/blob_tracker.h"
+#include "rle_vision/learning/color_calibration.h"
+#include "rle_vision/color/color_convert.h"
+#include "rle_vision/tracking/color_tracker.h"
+#include "rle_vision/segment/segmenter.h"
+#include "rle_vision/color/shared_color_table.h"
+#include "rle_vision/io/yolo_labels.h"
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -152,29 +152,15 @@ bool realFrame(const std::string& folder, cv::Mat* frame, std::vector<ColorClass
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const std::string source_dir = argc > 1 ? argv[1] : RLE_VISION_SOURCE_DIR;
-  const std::string json_path = argc > 2 ? argv[2] : source_dir + "/bench/results/tracker.json";
-  const std::string real_folder = argc > 3 ? argv[3] : "";
-  bench::pinToOneCpu();
-  cv::setNumThreads(1);
-
-  const SimFrame frame = benchmarkFrame(source_dir);
-  const std::vector<ColorClass> classes = benchmarkClasses(source_dir);
-  const FrameTimes clean = timeFrame(frame.image, classes);
-  const double tracker_ms = clean.bgr_ms, tracker_yuv422_ms = clean.uyvy_ms, opencv_ms = clean.opencv_ms;
-
+// The tracker loop while colour learning replaces the table: an updater thread on the other CPU
+// stores another table (ranges nudged) after every frame; the frame path takes a snapshot per
+// frame, as the Tracker nodelet does, and never waits. Returns the median frame time.
+double timeWithTableSwaps(const cv::Mat& image, const std::vector<ColorClass>& classes, double* swaps_per_frame) {
   Segmenter segmenter;
   BlobTracker tracker;
   std::vector<Region> regions;
   std::vector<TrackedBlob> blobs;
   double stamp = 0;
-
-  // The same loop while colour learning replaces the table: an updater thread on the other CPU
-  // stores another table (ranges nudged) after every frame; the frame path takes a snapshot per
-  // frame, as the Tracker nodelet does, and never waits.
   SharedColorTable shared;
   shared.store(std::make_shared<const ColorTable>(classes));
   std::atomic<bool> stop{false};
@@ -210,9 +196,9 @@ int main(int argc, char** argv) {
     }
   });
   long timed_frames = 0;
-  const double tracker_with_updates_ms = bench::medianMs([&] {
+  const double ms = bench::medianMs([&] {
     const std::shared_ptr<const ColorTable> snapshot = shared.load();
-    segmenter.segment(frame.image, PixelFormat::BGR8, *snapshot, &regions);
+    segmenter.segment(image, PixelFormat::BGR8, *snapshot, &regions);
     tracker.update(regions, stamp += 1.0 / 30, &blobs);
     bench::keep(blobs);
     ++frames_done;
@@ -220,14 +206,75 @@ int main(int argc, char** argv) {
   });
   stop = true;
   updater.join();
-  const double swaps_per_frame = static_cast<double>(swaps.load()) / timed_frames;
+  *swaps_per_frame = static_cast<double>(swaps.load()) / timed_frames;
+  return ms;
+}
 
-  cv::Mat copy(frame.image.size(), frame.image.type());
-  const size_t bytes = frame.image.total() * frame.image.elemSize();
-  const double memcpy_ms = bench::medianMs([&] {
-    std::memcpy(copy.data, frame.image.data, bytes);
+double memcpyMs(const cv::Mat& image) {
+  cv::Mat copy(image.size(), image.type());
+  const size_t bytes = image.total() * image.elemSize();
+  return bench::medianMs([&] {
+    std::memcpy(copy.data, image.data, bytes);
     bench::keep(copy.data[bytes / 2]);
   });
+}
+
+using Values = std::vector<std::pair<std::string, double>>;
+
+void addFrame(const std::string& name, const FrameTimes& t, Values* values) {
+  values->insert(values->end(), {{"tracker_" + name + "_ms", t.bgr_ms},
+                                 {"tracker_" + name + "_yuv422_ms", t.uyvy_ms},
+                                 {"opencv_" + name + "_ms", t.opencv_ms}});
+}
+
+void addBounded(const std::string& name, const BoundedTimes& t, Values* values) {
+  const std::string key = "bounded_" + name + "_";
+  values->insert(values->end(), {{key + "segment_ms", t.segment_bgr_ms},
+                                 {key + "segment_yuv422_ms", t.segment_uyvy_ms},
+                                 {key + "tracker_ms", t.tracked_bgr_ms},
+                                 {key + "tracker_yuv422_ms", t.tracked_uyvy_ms},
+                                 {key + "every_region_ms", t.every_region_bgr_ms},
+                                 {key + "every_region_yuv422_ms", t.every_region_uyvy_ms},
+                                 {key + "regions", static_cast<double>(t.regions_bgr)},
+                                 {key + "regions_yuv422", static_cast<double>(t.regions_uyvy)}});
+}
+
+// The clean frame's figures: ours (bgr8, UYVY, with table swaps), OpenCV's, memcpy's.
+struct CleanTimes {
+  FrameTimes frame;
+  double with_updates_ms = 0, swaps_per_frame = 0, memcpy_ms = 0;
+};
+
+void printClean(const SimFrame& frame, size_t classes, const CleanTimes& c) {
+  std::printf("rle_vision tracker benchmark: %dx%d bgr8, %zu classes, %zu blobs (config/scene_default.yaml, frame 0)\n",
+              frame.image.cols, frame.image.rows, classes, c.frame.regions_bgr);
+  std::printf("median of timed runs, one thread pinned to one CPU\n");
+  std::printf("  %-44s %8.3f ms   (target <= 0.5)\n", "rle_vision tracker core, bgr8", c.frame.bgr_ms);
+  std::printf("  %-44s %8.3f ms\n", "rle_vision tracker core, yuv422 (UYVY)",
+              c.frame.uyvy_ms);
+  std::printf("  %-44s %8.3f ms   (target <= 0.5; %.2f swaps per frame)\n", "rle_vision tracker core, bgr8, table swaps",
+              c.with_updates_ms, c.swaps_per_frame);
+  std::printf("  %-44s %8.3f ms   (%zu blobs)\n", "OpenCV cvtColor + inRange + CC per class", c.frame.opencv_ms,
+              c.frame.opencv_blobs);
+  std::printf("  %-44s %8.3f ms\n", "memcpy of the frame", c.memcpy_ms);
+  std::printf("  %-44s %8.1f x    (target >= 10)\n", "speedup vs OpenCV", c.frame.opencv_ms / c.frame.bgr_ms);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string source_dir = argc > 1 ? argv[1] : RLE_VISION_SOURCE_DIR;
+  const std::string json_path = argc > 2 ? argv[2] : source_dir + "/bench/measured/tracker.json";
+  const std::string real_folder = argc > 3 ? argv[3] : "";
+  bench::pinToOneCpu();
+  cv::setNumThreads(1);
+
+  const SimFrame frame = benchmarkFrame(source_dir);
+  const std::vector<ColorClass> classes = benchmarkClasses(source_dir);
+  CleanTimes clean;
+  clean.frame = timeFrame(frame.image, classes);
+  clean.with_updates_ms = timeWithTableSwaps(frame.image, classes, &clean.swaps_per_frame);
+  clean.memcpy_ms = memcpyMs(frame.image);
 
   // Real cameras are noisy: the bench frame with sensor noise sigma 25 and 60, and a real frame.
   const FrameTimes noise25 = timeFrame(noisyBenchmarkFrame(source_dir, 25), classes);
@@ -240,18 +287,8 @@ int main(int argc, char** argv) {
   const bool have_real = !real_folder.empty() && realFrame(real_folder, &real, &real_classes);
   const FrameTimes real_times = have_real ? timeFrame(real, real_classes) : FrameTimes();
 
-  const double speedup = opencv_ms / tracker_ms;
-  const double ratio_to_memcpy = tracker_ms / memcpy_ms;
-  std::printf("rle_vision tracker benchmark: %dx%d bgr8, %zu classes, %zu blobs (config/scene_default.yaml, frame 0)\n",
-              frame.image.cols, frame.image.rows, classes.size(), clean.regions_bgr);
-  std::printf("median of timed runs, one thread pinned to one CPU\n");
-  std::printf("  %-44s %8.3f ms   (target <= 0.5)\n", "rle_vision tracker core, bgr8", tracker_ms);
-  std::printf("  %-44s %8.3f ms   (CMVision on UYVY: ~0.43 ms, docs/DESIGN.md)\n", "rle_vision tracker core, yuv422 (UYVY)", tracker_yuv422_ms);
-  std::printf("  %-44s %8.3f ms   (target <= 0.5; %.2f swaps per frame)\n", "rle_vision tracker core, bgr8, table swaps",
-              tracker_with_updates_ms, swaps_per_frame);
-  std::printf("  %-44s %8.3f ms   (%zu blobs)\n", "OpenCV cvtColor + inRange + CC per class", opencv_ms, clean.opencv_blobs);
-  std::printf("  %-44s %8.3f ms\n", "memcpy of the frame", memcpy_ms);
-  std::printf("  %-44s %8.1f x    (target >= 10)\n", "speedup vs OpenCV", speedup);
+  const double ratio_to_memcpy = clean.frame.bgr_ms / clean.memcpy_ms;
+  printClean(frame, classes.size(), clean);
   printFrame("noise sigma 25", noise25);
   std::printf("  %-44s %8s      (target bgr8 <= 0.30 ms)\n", "", "");
   printFrame("noise sigma 60", noise60);
@@ -263,39 +300,20 @@ int main(int argc, char** argv) {
   std::printf("    %-42s targets: segment + tracker bgr8 <= 0.5 ms\n", "");
   printBounded("noise sigma 60", bounded60);
   std::printf("    %-42s targets: segment + tracker yuv422 <= 1.6 ms, bgr8 <= 3 ms\n", "");
-  bench::writeJson(json_path, {{"tracker_ms", tracker_ms},
-                               {"tracker_yuv422_ms", tracker_yuv422_ms},
-                               {"tracker_ms_with_updates", tracker_with_updates_ms},
-                               {"table_swaps_per_frame", swaps_per_frame},
-                               {"opencv_ms", opencv_ms},
-                               {"memcpy_ms", memcpy_ms},
-                               {"speedup_vs_opencv", speedup},
-                               {"ratio_to_memcpy", ratio_to_memcpy},
-                               {"tracker_noise25_ms", noise25.bgr_ms},
-                               {"tracker_noise25_yuv422_ms", noise25.uyvy_ms},
-                               {"opencv_noise25_ms", noise25.opencv_ms},
-                               {"tracker_noise60_ms", noise60.bgr_ms},
-                               {"tracker_noise60_yuv422_ms", noise60.uyvy_ms},
-                               {"opencv_noise60_ms", noise60.opencv_ms},
-                               {"tracker_real_ms", real_times.bgr_ms},
-                               {"tracker_real_yuv422_ms", real_times.uyvy_ms},
-                               {"opencv_real_ms", real_times.opencv_ms},
-                               {"bounded_noise25_segment_ms", bounded25.segment_bgr_ms},
-                               {"bounded_noise25_segment_yuv422_ms", bounded25.segment_uyvy_ms},
-                               {"bounded_noise25_tracker_ms", bounded25.tracked_bgr_ms},
-                               {"bounded_noise25_tracker_yuv422_ms", bounded25.tracked_uyvy_ms},
-                               {"bounded_noise25_every_region_ms", bounded25.every_region_bgr_ms},
-                               {"bounded_noise25_every_region_yuv422_ms", bounded25.every_region_uyvy_ms},
-                               {"bounded_noise25_regions", static_cast<double>(bounded25.regions_bgr)},
-                               {"bounded_noise25_regions_yuv422", static_cast<double>(bounded25.regions_uyvy)},
-                               {"bounded_noise60_segment_ms", bounded60.segment_bgr_ms},
-                               {"bounded_noise60_segment_yuv422_ms", bounded60.segment_uyvy_ms},
-                               {"bounded_noise60_tracker_ms", bounded60.tracked_bgr_ms},
-                               {"bounded_noise60_tracker_yuv422_ms", bounded60.tracked_uyvy_ms},
-                               {"bounded_noise60_every_region_ms", bounded60.every_region_bgr_ms},
-                               {"bounded_noise60_every_region_yuv422_ms", bounded60.every_region_uyvy_ms},
-                               {"bounded_noise60_regions", static_cast<double>(bounded60.regions_bgr)},
-                               {"bounded_noise60_regions_yuv422", static_cast<double>(bounded60.regions_uyvy)}});
+  Values values = {{"tracker_ms", clean.frame.bgr_ms},
+                   {"tracker_yuv422_ms", clean.frame.uyvy_ms},
+                   {"tracker_ms_with_updates", clean.with_updates_ms},
+                   {"table_swaps_per_frame", clean.swaps_per_frame},
+                   {"opencv_ms", clean.frame.opencv_ms},
+                   {"memcpy_ms", clean.memcpy_ms},
+                   {"speedup_vs_opencv", clean.frame.opencv_ms / clean.frame.bgr_ms},
+                   {"ratio_to_memcpy", ratio_to_memcpy}};
+  addFrame("noise25", noise25, &values);
+  addFrame("noise60", noise60, &values);
+  addFrame("real", real_times, &values);
+  addBounded("noise25", bounded25, &values);
+  addBounded("noise60", bounded60, &values);
+  bench::writeJson(json_path, values);
   std::printf("wrote %s\n", json_path.c_str());
   return 0;
 }

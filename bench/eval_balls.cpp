@@ -18,12 +18,12 @@
 #include <opencv2/imgproc.hpp>
 
 #include "harness.h"
-#include "opencv_pipeline.h"
-#include "rle_vision/camera_stream.h"
-#include "rle_vision/color_calibration.h"
-#include "rle_vision/color_config.h"
-#include "rle_vision/segmenter.h"
-#include "rle_vision/yolo_labels.h"
+#include "eval/opencv_pipeline.h"
+#include "rle_vision/pipeline/camera_stream.h"
+#include "rle_vision/learning/color_calibration.h"
+#include "rle_vision/io/color_config.h"
+#include "rle_vision/segment/segmenter.h"
+#include "rle_vision/io/yolo_labels.h"
 
 namespace {
 

@@ -26,9 +26,9 @@
 #include <opencv2/ximgproc/fast_line_detector.hpp>
 
 #include "harness.h"
-#include "horizon_metrics.h"
-#include "rle_vision/landmark_detector.h"
-#include "rle_vision/landmark_params_file.h"
+#include "eval/horizon_metrics.h"
+#include "rle_vision/landmark/landmark_detector.h"
+#include "rle_vision/io/landmark_params_file.h"
 
 namespace {
 

@@ -2,19 +2,19 @@
 # Latency under load: runs the demo pipeline (simulator -> tracker, edge detector, landmark,
 # ground projector, monitor, all at 30 Hz) for BENCH_SECONDS (default 60) at 640x480 and at
 # 1280x720, and writes tracker latency, drops, landmark skips and CPU per node to
-# bench/results/latency.json. Both sizes run at both priorities, each twice (the spread is in
+# latency.json. Both sizes run at both priorities, each twice (the spread is in
 # the file): as launched by default (the tracker's frame thread at SCHED_FIFO priority 50,
 # where the system allows it) and with realtime_priority:=0 (normal priority, what a user
 # without CAP_SYS_NICE or an rtprio limit gets). A fifth configuration, 640x480@overload, is
 # the bounded-frame case: sensor noise sigma 60 and CMVision's colors.txt (thousands of regions a
 # frame), the tracker alone, as launched; its rows give the slowest frame's wall-clock and CPU
-# time. BENCH_REPEATS (2) sets the repeats.
+# time. BENCH_REPEATS (2) sets the repeats. The JSON goes to bench/measured/ (RECORD=1:
+# bench/results/, and the docs' tables rewritten).
 set -euo pipefail
 source "$(dirname "$0")/env.sh"
 source_workspace
 seconds="${BENCH_SECONDS:-60}"
-out="$ROOT/bench/results/latency.json"
-mkdir -p "$ROOT/bench/results"
+out="$RESULTS_DIR/latency.json"
 rm -f "$out"
 runs=()
 for config in 640x480 640x480@normal 1280x720 1280x720@normal 640x480@overload; do
@@ -49,3 +49,4 @@ for run in "${runs[@]}"; do
   fi
 done
 echo "[bench-latency] wrote $out"
+report_results latency

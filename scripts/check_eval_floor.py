@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Checks our figures in make-eval results against the floor kept in the repository
 (bench/eval_floor.json): the best figures landed so far. Falling below the floor fails (exit 1);
-reaching the targets (docs/DESIGN.md section 5, the issues' targets) is reported. The floor only
+reaching the targets (docs/ARCHITECTURE.md, the issues' targets) is reported. The floor only
 rises: when a change improves a figure, raise it in bench/eval_floor.json in the same commit.
 
   check_eval_floor.py [--horizon EVAL_HORIZON.json] [--balls EVAL_BALLS.json] --floor FLOOR.json"""

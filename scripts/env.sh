@@ -12,3 +12,21 @@ source_workspace() {
   source "$WS/devel/setup.bash"
   set -u
 }
+# Where make bench, make eval and make bench-latency write their JSON: bench/measured/
+# (git-ignored: measuring a machine leaves the checkout clean), or with RECORD=1 bench/results/,
+# the committed figures that the docs' tables are written from (scripts/readme_figures.py).
+if [[ "${RECORD:-0}" == 1 ]]; then
+  RESULTS_DIR="$ROOT/bench/results"
+else
+  RESULTS_DIR="$ROOT/bench/measured"
+fi
+mkdir -p "$RESULTS_DIR"
+# After a run: the measured figures beside the committed ones, or (RECORD=1) the docs' tables
+# rewritten from the new ones.
+report_results() {
+  if [[ "${RECORD:-0}" == 1 ]]; then
+    python3 "$ROOT/scripts/readme_figures.py" --write
+  else
+    python3 "$ROOT/scripts/compare_results.py" "$@"
+  fi
+}

@@ -12,13 +12,14 @@ flags=(-std=c++17 -O1 -g -fno-omit-frame-pointer -DRLE_VISION_NO_MULTIVERSION -D
        -I/usr/include/opencv4 -I/usr/include/eigen3 -fsanitize=address,undefined -fno-sanitize-recover=all)
 libs=(-lopencv_core -lopencv_imgproc -lopencv_calib3d -lyaml-cpp -lpthread)
 
-# The core and the config parsers, compiled once (instrumented for coverage).
+# The core, its file readers and the simulator (every stage folder of src/core, not the tests),
+# compiled once (instrumented for coverage).
 objects=()
-newest_header=$(ls -t "$ROOT"/include/rle_vision/*.h "$ROOT"/src/config/*.h "$ROOT"/src/core/*.h | head -1)
-for src in "$ROOT"/src/core/*.cpp "$ROOT"/src/config/*.cpp; do
+newest_header=$(ls -t "$ROOT"/include/rle_vision/*/*.h "$ROOT"/src/core/*/*.h | head -1)
+for src in "$ROOT"/src/core/*/*.cpp; do
   obj="$out/obj/$(basename "${src%.cpp}").o"
   if [[ ! -f "$obj" || "$src" -nt "$obj" || "$newest_header" -nt "$obj" ]]; then
-    clang++ "${flags[@]}" -fsanitize=fuzzer-no-link -I"$ROOT/src/config" -c "$src" -o "$obj"
+    clang++ "${flags[@]}" -fsanitize=fuzzer-no-link -I"$ROOT/src/core" -c "$src" -o "$obj"
   fi
   objects+=("$obj")
 done

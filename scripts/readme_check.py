@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""make test-readme: runs every shell command block of the README as a new user would, and
-fails on a non-zero exit or an error printed.
+"""make test-readme: runs every shell command block of README.md and docs/*.md as a new user
+would, and fails on a non-zero exit or an error printed; then checks the generated tables
+(docs/performance.md's figures, docs/parameters.md's parameters and the launch arguments).
 
-Every fenced ```sh or ```bash block is a test case named README.md:LINE. Each command in it
+Every fenced ```sh or ```bash block is a test case named FILE:LINE. Each command in it
 (continuation lines joined) runs in a fresh login shell (`env -i`, `bash -l`) that first runs
 the README's workspace set-up block (the one that sources .ws/devel/setup.bash), from the
 checkout. A command still running after --timeout-s (a launch file, `make demo`) has started
@@ -15,9 +16,10 @@ The visible line just above a block may say:
 Files the README's commands name (/tmp/head.bag, /tmp/rle_vision_frames/...) are made first
 by scripts/readme_fixtures.py.
 
-  readme_check.py [--readme README.md] [--junit OUT.xml] [--timeout-s 30] [--only LINE]
+  readme_check.py [FILE.md ...] [--junit OUT.xml] [--timeout-s 30] [--only FILE:LINE]
 """
 import argparse
+import glob
 import os
 import re
 import signal
@@ -196,51 +198,67 @@ def self_test():
     return [] if got == expected else ['the check itself: blocks (line, failed) %s, expected %s' % (got, expected)]
 
 
+def documents(paths):
+    """(name, blocks) of README.md and every docs/*.md, or of the files given."""
+    if not paths:
+        paths = [os.path.join(ROOT, 'README.md')] + sorted(glob.glob(os.path.join(ROOT, 'docs', '*.md')))
+    return [(os.path.relpath(os.path.abspath(p), ROOT), read_blocks(p)) for p in paths]
+
+
+def generated_tables():
+    """The figure tables (docs/performance.md) and the parameter tables (docs/parameters.md,
+    and the launch files' arguments) against what writes them."""
+    results = []
+    for script, name in (('readme_figures.py', 'docs/performance.md: tables of measured figures'),
+                         ('param_docs.py', 'docs/parameters.md: parameter tables and launch arguments')):
+        run = subprocess.run([sys.executable, os.path.join(ROOT, 'scripts', script), '--check'], capture_output=True,
+                             text=True)
+        print(run.stdout, end='')
+        results.append((name, [] if run.returncode == 0 else [run.stdout.strip() or run.stderr.strip()], None))
+    return results
+
+
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument('--readme', default=os.path.join(ROOT, 'README.md'))
+    parser.add_argument('docs', nargs='*', help='Markdown files (default: README.md and docs/*.md)')
     parser.add_argument('--junit')
     parser.add_argument('--timeout-s', type=float, default=30)
-    parser.add_argument('--only', type=int, help='run only the block that starts on this line')
+    parser.add_argument('--only', help='run only the block that starts at FILE:LINE')
     args = parser.parse_args()
-    name = os.path.basename(args.readme)
-    blocks = read_blocks(args.readme)
-    setup = [b for b in blocks if any('.ws/devel/setup.bash' in c for c in b.commands)]
+    docs = documents(args.docs)
+    setup = [b for _, blocks in docs for b in blocks if any('.ws/devel/setup.bash' in c for c in b.commands)]
     if not setup:
-        print('[readme] %s has no block that sources .ws/devel/setup.bash' % name)
+        print('[readme] no block sources .ws/devel/setup.bash')
         return 1
     prelude = setup[0].commands
     fixtures = subprocess.call(login_shell('%s\npython3 scripts/readme_fixtures.py' % '\n'.join(prelude)))
     if fixtures != 0:
-        print('[readme] making the files the README names failed')
+        print('[readme] making the files the docs name failed')
         return 1
+    named = [('%s:%d' % (name, b.line), name, b) for name, blocks in docs for b in blocks]
     if args.only:
-        blocks = [b for b in blocks if b.line == args.only]
+        named = [n for n in named if n[0] == args.only]
     results = [('readme check: a broken command fails with its line', self_test(), None)]
     # The demo's blocks first: the others start their own roscore and pipeline (make demo,
     # play.launch), which a running demo would clash with.
-    demo_blocks = [b for b in blocks if b.with_demo and not b.skip_reason]
+    demo_blocks = [n for n in named if n[2].with_demo and not n[2].skip_reason]
     if demo_blocks:
         demo = Demo(prelude)
         try:
-            for block in demo_blocks:
-                results.append(('%s:%d' % (name, block.line), check_block(block, prelude, args.timeout_s, name), None))
+            for label, name, block in demo_blocks:
+                results.append((label, check_block(block, prelude, args.timeout_s, name), None))
         finally:
             demo.stop()
-    for block in blocks:
+    for label, name, block in named:
         if block.with_demo and not block.skip_reason:
             continue
         if block.skip_reason:
-            print('[readme] %s:%d skipped: %s' % (name, block.line, block.skip_reason))
-            results.append(('%s:%d' % (name, block.line), [], block.skip_reason))
+            print('[readme] %s skipped: %s' % (label, block.skip_reason))
+            results.append((label, [], block.skip_reason))
             continue
-        results.append(('%s:%d' % (name, block.line), check_block(block, prelude, args.timeout_s, name), None))
-    # The tables of measured figures equal what their result files say.
-    figures = subprocess.run([sys.executable, os.path.join(ROOT, 'scripts', 'readme_figures.py'), '--check',
-                              '--readme', args.readme], capture_output=True, text=True)
-    print(figures.stdout, end='')
-    results.append(('%s: tables of measured figures' % name,
-                    [] if figures.returncode == 0 else [figures.stdout.strip() or figures.stderr.strip()], None))
+        results.append((label, check_block(block, prelude, args.timeout_s, name), None))
+    if not args.only:
+        results += generated_tables()
     if args.junit:
         write_junit(args.junit, results)
     failed = [n for n, f, s in results if f and not s]

@@ -1,14 +1,14 @@
 #!/usr/bin/env python3
-"""The README's tables of measured figures, written from the files the benchmarks and the
-evaluations write (bench/results/*.json, each with its machine and date), so that a figure
-cannot drift from its run. A table sits between `<!-- figures: NAME -->` and
+"""The tables of measured figures in docs/performance.md, written from the committed files the
+benchmarks and the evaluations record (bench/results/*.json, each with its machine and date),
+so that a figure cannot drift from its run. A table sits between `<!-- figures: NAME -->` and
 `<!-- /figures -->`; NAME picks the writer below.
 
-  readme_figures.py --write   rewrite the tables in README.md from bench/results/
+  readme_figures.py --write   rewrite the tables in docs/performance.md from bench/results/
   readme_figures.py --check   exit 1, naming the tables that differ (make test runs this)
 
-After `make bench`, `make eval` or `make bench-latency`, run --write and commit the JSON files
-with the README."""
+`make bench RECORD=1` (eval, bench-latency) records a run into bench/results/ and runs --write;
+commit both."""
 import argparse
 import json
 import os
@@ -43,7 +43,7 @@ def tracker():
     d = load('tracker')
     rows = [
         ['tracker core, bgr8 (classify + RLE + regions + tracking)', ms(d['tracker_ms'], 3), '≤ 0.5 ms'],
-        ['tracker core, yuv422 (UYVY)', ms(d['tracker_yuv422_ms'], 3), 'faster than CMVision (~0.43 ms here, docs/DESIGN.md)'],
+        ['tracker core, yuv422 (UYVY)', ms(d['tracker_yuv422_ms'], 3), 'faster than CMVision on the same frame (measured outside the project: below)'],
         ['tracker core, bgr8, a new colour table swapped in every frame (built on the other CPU)',
          '%s (%.2f swaps per frame)' % (ms(d['tracker_ms_with_updates'], 3), d['table_swaps_per_frame']), '≤ 0.5 ms'],
         ['OpenCV `cvtColor` + `inRange` + `connectedComponentsWithStats` per class', ms(d['opencv_ms'], 1), ''],
@@ -206,25 +206,25 @@ def main():
     mode = parser.add_mutually_exclusive_group(required=True)
     mode.add_argument('--write', action='store_true')
     mode.add_argument('--check', action='store_true')
-    parser.add_argument('--readme', default=os.path.join(ROOT, 'README.md'))
+    parser.add_argument('--doc', default=os.path.join(ROOT, 'docs', 'performance.md'))
     args = parser.parse_args()
-    text = open(args.readme).read()
+    text = open(args.doc).read()
     try:
         new = render(text)
     except (OSError, KeyError, ValueError) as e:
         print('[figures] cannot write the README tables: %s' % e)
         return 1
     if args.write:
-        with open(args.readme, 'w') as f:
+        with open(args.doc, 'w') as f:
             f.write(new)
-        print('[figures] wrote %d tables into %s' % (len(REGION.findall(new)), args.readme))
+        print('[figures] wrote %d tables into %s' % (len(REGION.findall(new)), args.doc))
         return 0
     old_regions = {m.group(2): m.group(3) for m in REGION.finditer(text)}
     stale = [name for name, body in ((m.group(2), m.group(3)) for m in REGION.finditer(new)) if old_regions[name] != body]
     for name in stale:
         line = text[:text.index('<!-- figures: %s -->' % name)].count('\n') + 1
-        print('[figures] README.md:%d: the %s table differs from bench/results (run scripts/readme_figures.py --write)'
-              % (line, name))
+        print('[figures] %s:%d: the %s table differs from bench/results (run scripts/readme_figures.py --write)'
+              % (os.path.relpath(args.doc, ROOT), line, name))
     print('[figures] %d tables, %d differ from bench/results' % (len(old_regions), len(stale)))
     return 1 if stale else 0
 

@@ -2,7 +2,7 @@
 """Makes the files the README's commands name, for make test-readme: three camera frames with
 a ball and YOLO labels (/tmp/rle_vision_frames), and bags recorded the ways robots record a
 camera: raw (/tmp/run.bag, /tmp/rect.bag), JPEG-compressed (/tmp/head.bag) and Bayer
-(/tmp/bayer.bag). The frames are synthetic: a sky over textured ground, a red box of the
+(/tmp/bayer.bag); a colour file (/tmp/my_colors.yaml). The frames are synthetic: a sky over textured ground, a red box of the
 shipped colour classes, an orange ball."""
 import os
 
@@ -66,7 +66,16 @@ def write_bag(path, camera, image_topic, kind, frames=30):
             bag.write('/%s/camera_info' % camera, info, stamp)
 
 
+def write_colours():
+    """/tmp/my_colors.yaml, the colour file the README's robot command names: the shipped one."""
+    if not os.path.exists('/tmp/my_colors.yaml'):
+        root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+        with open(os.path.join(root, 'config', 'colors.yaml')) as src, open('/tmp/my_colors.yaml', 'w') as dst:
+            dst.write(src.read())
+
+
 def main():
+    write_colours()
     write_frames()
     write_bag('/tmp/run.bag', 'camera', 'image_raw', 'raw')
     write_bag('/tmp/rect.bag', 'head_cam', 'image_rect_color', 'raw')

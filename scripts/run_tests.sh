@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds and runs every test (gtest for the core, rostest for nodelets and launch files, the code
-# shape check, the core built without ROS, the install space, the README's commands), then prints "N passed,
+# shape check, the core built without ROS, the install space, the docs' commands), then prints "N passed,
 # M failed" as the last line; exits non-zero on any failure.
 set -uo pipefail
 source "$(dirname "$0")/env.sh"
@@ -20,6 +20,7 @@ fi
 # The core built on its own with plain CMake (no ROS in it), and the package's install space.
 JUNIT_DIR="$results/checks" "$ROOT/scripts/test_core_plain.sh" || true
 JUNIT_DIR="$results/checks" "$ROOT/scripts/test_install_space.sh" || true
-# Every shell command block of the README, as a new user would run it.
+# Every shell command block of README.md and docs/*.md, as a new user would run it, and the
+# generated tables of docs/ (figures, parameters).
 "$ROOT/scripts/test_readme.sh" --junit "$results/checks/readme.xml" || true
 exec python3 "$ROOT/scripts/summarize_tests.py" "$results" "${extra[@]}"

@@ -46,9 +46,9 @@ target_link_libraries(user rle_vision::config rle_vision::core)
 CMAKE
 cat >"$build/user/user.cpp" <<'CPP'
 #include <Eigen/Core>
-#include "rle_vision/color_config.h"
-#include "rle_vision/data_files.h"
-#include "rle_vision/landmark_detector.h"
+#include "rle_vision/io/color_config.h"
+#include "rle_vision/io/data_files.h"
+#include "rle_vision/landmark/landmark_detector.h"
 int main() {
   rle_vision::LandmarkDetector detector;
   const Eigen::Vector2d unused(0, 0);

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "rle_vision/ColorRangeArray.h"
-#include "rle_vision/color_class.h"
+#include "rle_vision/color/color_class.h"
 
 namespace rle_vision {
 

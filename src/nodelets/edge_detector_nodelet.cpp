@@ -17,11 +17,12 @@
 
 #include "image_conversions.h"
 #include "error_throttle.h"
+#include "node_settings.h"
 #include "low_priority_worker.h"
 #include "processing_stats.h"
 #include "startup_params.h"
 #include "rle_vision/EdgeDetectorConfig.h"
-#include "rle_vision/sobel5.h"
+#include "rle_vision/edges/sobel5.h"
 
 namespace rle_vision {
 
@@ -56,8 +57,13 @@ void EdgeDetectorNodelet::onInit() {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
   it_ = std::make_shared<image_transport::ImageTransport>(nh);
-  bool low_priority = true;
-  pnh.param("low_priority", low_priority, true);
+  std::vector<std::string> problems;
+  // The RLE_EDGE_SETTING lines of its table (low_priority), each a local variable.
+#define RLE_EDGE_SETTING(key, type, default_value, min, max, description) \
+  type key = default_value;                                              \
+  readSetting(pnh, #key, &key, min, max, &problems);
+#include "rle_vision/params/landmark_params.def"
+  for (const std::string& problem : problems) NODELET_WARN("%s", problem.c_str());
   for (const std::string& problem : startupParamProblems<EdgeDetectorConfig>(pnh)) NODELET_WARN("%s", problem.c_str());
   reconfigure_server_ = std::make_shared<dynamic_reconfigure::Server<EdgeDetectorConfig>>(pnh);
   reconfigure_server_->setCallback([this](EdgeDetectorConfig& config, uint32_t) {
@@ -102,19 +108,14 @@ void EdgeDetectorNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
 }
 
 void EdgeDetectorNodelet::process(const sensor_msgs::ImageConstPtr& msg) {
-  const auto start = std::chrono::steady_clock::now();
-  const double cpu_start_ms = threadCpuMs();
-  PixelFormat format;
-  cv::Mat image;
-  std::string error;
-  if (!viewImage(*msg, &format, &image, &error)) {
-    if (input_errors_.shouldLog(error)) {
-      NODELET_ERROR("dropping image on %s: %s", getNodeHandle().resolveName("image_raw").c_str(), error.c_str());
-    }
-    return;
-  }
+  const FrameClock clock;
+  CameraFrame frame;
+  const auto log_error = [this](const std::string& text) { NODELET_ERROR("%s", text.c_str()); };
+  if (!viewCameraImage(*msg, getNodeHandle().resolveName("image_raw"), &input_errors_, &frame, log_error)) return;
   // The Sobel works on any channel order (it keeps the largest channel magnitude); 4:2:2
   // is converted to BGR first.
+  const PixelFormat format = frame.format;
+  const cv::Mat& image = frame.image;
   const cv::Mat* input = &image;
   if (format == PixelFormat::UYVY || format == PixelFormat::YUYV) {
     cv::cvtColor(image, bgr_, format == PixelFormat::UYVY ? cv::COLOR_YUV2BGR_UYVY : cv::COLOR_YUV2BGR_YUY2);
@@ -136,8 +137,7 @@ void EdgeDetectorNodelet::process(const sensor_msgs::ImageConstPtr& msg) {
   cv::Mat edges(static_cast<int>(out->height), static_cast<int>(out->width), CV_8UC1, out->data.data(), out->step);
   sobel_.edges(*input, gain, &edges);
   pub_edges_.publish(out);
-  stats_.addFrame(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
-                  threadCpuMs() - cpu_start_ms);
+  stats_.addFrame(clock.elapsedMs(), clock.cpuMs());
 }
 
 }  // namespace rle_vision

@@ -9,11 +9,17 @@ namespace rle_vision {
 
 AttitudeFilterOptions attitudeFilterFromConfig(const GroundProjectorConfig& config) {
   AttitudeFilterOptions o;
-  o.smoothing = config.attitude_smoothing;
-  o.min_confidence = config.horizon_min_confidence;
-  o.max_jump_deg = config.attitude_max_jump_deg;
-  o.max_rejected = config.attitude_max_rejected;
-  o.max_hold_s = config.attitude_max_hold_s;
+#define RLE_ATTITUDE_FILTER_PARAM(key, member, type, default_value, min, max, description) \
+  o.member = static_cast<type>(config.key);
+#include "rle_vision/params/ground_params.def"
+  return o;
+}
+
+GroundOptions groundFromConfig(const GroundProjectorConfig& config) {
+  GroundOptions o;
+#define RLE_GROUND_PARAM(key, member, type, default_value, min, max, description) o.member = static_cast<type>(config.key);
+#define RLE_GROUND_ATTITUDE_PARAM RLE_GROUND_PARAM
+#include "rle_vision/params/ground_params.def"
   return o;
 }
 

@@ -10,13 +10,14 @@
 #include "rle_vision/Blob.h"
 #include "rle_vision/GroundProjectorConfig.h"
 #include "rle_vision/Obstacle.h"
-#include "rle_vision/attitude_filter.h"
-#include "rle_vision/ground_projection.h"
+#include "rle_vision/ground/attitude_filter.h"
+#include "rle_vision/ground/ground_projection.h"
 
 namespace rle_vision {
 
-// The GroundProjector's attitude filter parameters as core options.
+// The GroundProjector's parameters as core options (from its table, ground_params.def).
 AttitudeFilterOptions attitudeFilterFromConfig(const GroundProjectorConfig& config);
+GroundOptions groundFromConfig(const GroundProjectorConfig& config);
 
 // What the projection needs of a blob.
 BlobOutline outlineFromBlob(const Blob& blob);

@@ -8,7 +8,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "rle_vision/ObstacleArray.h"
-#include "rle_vision/color_class.h"
+#include "rle_vision/color/color_class.h"
 
 namespace rle_vision {
 

@@ -33,6 +33,7 @@
 
 #include "ground_conversions.h"
 #include "ground_markers.h"
+#include "node_settings.h"
 #include "image_conversions.h"
 #include "processing_stats.h"
 #include "startup_params.h"
@@ -40,10 +41,10 @@
 #include "rle_vision/GroundProjectorConfig.h"
 #include "rle_vision/Horizon.h"
 #include "rle_vision/ObstacleArray.h"
-#include "rle_vision/attitude_filter.h"
-#include "rle_vision/color_config.h"
-#include "rle_vision/ground_projection.h"
-#include "rle_vision/wait_watchdog.h"
+#include "rle_vision/ground/attitude_filter.h"
+#include "rle_vision/io/color_config.h"
+#include "rle_vision/ground/ground_projection.h"
+#include "rle_vision/common/wait_watchdog.h"
 
 namespace rle_vision {
 
@@ -82,7 +83,7 @@ class GroundProjectorNodelet : public nodelet::Nodelet {
 
   // Dynamic parameters: copied under the mutex, used without it.
   std::mutex config_mutex_;
-  double max_range_m_ = 10.0, camera_height_m_ = 0.45, attitude_stddev_rad_ = 0.5 * M_PI / 180;
+  GroundOptions ground_options_;
   AttitudeFilterOptions filter_options_;
   std::shared_ptr<dynamic_reconfigure::Server<GroundProjectorConfig>> reconfigure_server_;
   std::unique_ptr<GroundProjectorConfig> accepted_config_;  // shown again when a new one is refused
@@ -160,21 +161,30 @@ void GroundProjectorNodelet::onInit() {
                use_horizon_ ? "the horizon (broadcast to tf)" : "tf");
 }
 
+// What the GroundProjector reads once at start: the RLE_GROUND_SETTING lines of its table.
+struct GroundSettings {
+#define RLE_GROUND_SETTING(key, type, default_value, min, max, description) type key = default_value;
+#include "rle_vision/params/ground_params.def"
+};
+
 void GroundProjectorNodelet::readStaticParams(ros::NodeHandle& pnh) {
-  std::string attitude_source;
-  pnh.param<std::string>("attitude_source", attitude_source, "tf");
-  if (attitude_source != "tf" && attitude_source != "horizon") {
-    NODELET_ERROR("~attitude_source must be 'tf' or 'horizon', got '%s': using 'tf'", attitude_source.c_str());
-    attitude_source = "tf";
+  GroundSettings settings;
+  std::vector<std::string> problems;
+#define RLE_GROUND_SETTING(key, type, default_value, min, max, description) \
+  readSetting(pnh, #key, &settings.key, min, max, &problems);
+#include "rle_vision/params/ground_params.def"
+  for (const std::string& problem : problems) NODELET_WARN("%s", problem.c_str());
+  if (settings.attitude_source != "tf" && settings.attitude_source != "horizon") {
+    NODELET_ERROR("~attitude_source must be 'tf' or 'horizon', got '%s': using 'tf'", settings.attitude_source.c_str());
+    settings.attitude_source = "tf";
   }
-  use_horizon_ = attitude_source == "horizon";
-  pnh.param<std::string>("base_frame", base_frame_, "base_link");
-  pnh.param<std::string>("camera_frame", camera_frame_, "camera_link");
-  pnh.param("publish_optical_tf", publish_optical_tf_, true);
-  pnh.param("tf_queue_size", queue_size_, 30);
-  queue_size_ = std::max(1, queue_size_);
-  std::string colors_file;
-  pnh.param<std::string>("colors_file", colors_file, ros::package::getPath("rle_vision") + "/config/colors.yaml");
+  use_horizon_ = settings.attitude_source == "horizon";
+  base_frame_ = settings.base_frame;
+  camera_frame_ = settings.camera_frame;
+  publish_optical_tf_ = settings.publish_optical_tf;
+  queue_size_ = settings.tf_queue_size;
+  const std::string colors_file =
+      settings.colors_file.empty() ? ros::package::getPath("rle_vision") + "/config/colors.yaml" : settings.colors_file;
   try {
     for (const ColorClass& c : loadColorClasses(colors_file)) display_rgb_[c.name] = c.display_rgb;
   } catch (const std::exception& e) {  // only the markers' colours depend on it
@@ -216,8 +226,9 @@ void GroundProjectorNodelet::connectCb() {
 
 void GroundProjectorNodelet::reconfigureCb(GroundProjectorConfig& config, uint32_t /*level*/) {
   AttitudeFilterOptions options = attitudeFilterFromConfig(config);
+  const GroundOptions ground = groundFromConfig(config);
   std::string problem = validateAttitudeFilterOptions(options);
-  for (double value : {config.max_range_m, config.camera_height_m, config.attitude_stddev_deg}) {
+  for (double value : {ground.max_range_m, ground.camera_height_m, ground.attitude_stddev_deg}) {
     if (problem.empty() && !(std::isfinite(value) && value > 0)) problem = "max_range_m, camera_height_m and attitude_stddev_deg must be positive numbers";
   }
   std::lock_guard<std::mutex> lock(config_mutex_);
@@ -227,9 +238,7 @@ void GroundProjectorNodelet::reconfigureCb(GroundProjectorConfig& config, uint32
     return;
   }
   accepted_config_ = std::make_unique<GroundProjectorConfig>(config);
-  max_range_m_ = config.max_range_m;
-  camera_height_m_ = config.camera_height_m;
-  attitude_stddev_rad_ = config.attitude_stddev_deg * M_PI / 180;
+  ground_options_ = ground;
   filter_options_ = options;
 }
 
@@ -276,7 +285,7 @@ void GroundProjectorNodelet::broadcastPose(const std_msgs::Header& header, doubl
   double height_m;
   {
     std::lock_guard<std::mutex> lock(config_mutex_);
-    height_m = camera_height_m_;
+    height_m = ground_options_.camera_height_m;
   }
   if (publish_optical_tf_ && !optical_tf_sent_ && !header.frame_id.empty()) {
     geometry_msgs::TransformStamped optical;
@@ -301,7 +310,7 @@ void GroundProjectorNodelet::publishAttitude(const std_msgs::Header& header, con
   double stddev;
   {
     std::lock_guard<std::mutex> lock(config_mutex_);
-    stddev = attitude_stddev_rad_;
+    stddev = ground_options_.attitude_stddev_deg * M_PI / 180;
   }
   geometry_msgs::QuaternionStamped attitude;
   attitude.header.stamp = header.stamp;
@@ -380,7 +389,7 @@ void GroundProjectorNodelet::placePendingBlobs() {
     }
     {
       std::lock_guard<std::mutex> lock(config_mutex_);
-      height_m = camera_height_m_;
+      height_m = ground_options_.camera_height_m;
     }
     place(*msg, baseFromOptical(roll, pitch, 0.0, height_m));
   }
@@ -414,7 +423,7 @@ void GroundProjectorNodelet::place(const BlobArray& msg, const Eigen::Isometry3d
   double max_range_m;
   {
     std::lock_guard<std::mutex> lock(config_mutex_);
-    max_range_m = max_range_m_;
+    max_range_m = ground_options_.max_range_m;
   }
   auto out = boost::make_shared<ObstacleArray>();
   out->header.stamp = msg.header.stamp;

@@ -38,6 +38,14 @@ bool viewImage(const sensor_msgs::Image& msg, PixelFormat* format, cv::Mat* mat,
   return error->empty();
 }
 
+bool viewCameraImage(const sensor_msgs::Image& msg, const std::string& topic, ErrorThrottle* throttle,
+                     CameraFrame* frame, const std::function<void(const std::string&)>& log_error) {
+  std::string error;
+  if (viewImage(msg, &frame->format, &frame->image, &error)) return true;
+  if (throttle->shouldLog(error)) log_error("dropping image on " + topic + ": " + error);
+  return false;
+}
+
 sensor_msgs::ImagePtr debugImageMsg(const std_msgs::Header& header, const cv::Mat& bgr) {
   return cv_bridge::CvImage(header, "bgr8", bgr).toImageMsg();
 }

@@ -22,9 +22,10 @@
 #include <sensor_msgs/Image.h>
 
 #include "error_throttle.h"
+#include "node_settings.h"
 #include "image_conversions.h"
 #include "processing_stats.h"
-#include "rle_vision/image_input.h"
+#include "rle_vision/io/image_input.h"
 
 namespace rle_vision {
 
@@ -38,8 +39,8 @@ class ImageInputNodelet : public nodelet::Nodelet {
   void publish(const std_msgs::Header& header, const EncodedImage& image);
   void dropFrame(const std::string& error);
 
-  std::string input_mode_ = "auto";
-  bool debayer_ = false;
+  std::string input_mode_;  // settings: from the table at start
+  bool debayer_{};
   std::atomic<InputChoice> choice_{InputChoice::kUndecided};
   std::string input_topic_;  // for error messages, set once decided
   ros::WallTime started_;
@@ -57,8 +58,13 @@ class ImageInputNodelet : public nodelet::Nodelet {
 void ImageInputNodelet::onInit() {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
-  pnh.param("input_mode", input_mode_, std::string("auto"));
-  pnh.param("debayer", debayer_, false);
+  std::vector<std::string> problems;
+  // The RLE_IMAGE_INPUT_SETTING lines of its table: input_mode_, debayer_.
+#define RLE_IMAGE_INPUT_SETTING(key, type, default_value, min, max, description) \
+  key##_ = default_value;                                                       \
+  readSetting(pnh, #key, &key##_, min, max, &problems);
+#include "rle_vision/params/image_input_params.def"
+  for (const std::string& problem : problems) NODELET_WARN("%s", problem.c_str());
   const std::string mode_error = inputModeError(input_mode_);
   if (!mode_error.empty()) {
     NODELET_ERROR("%s: using auto", mode_error.c_str());

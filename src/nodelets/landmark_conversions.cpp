@@ -37,21 +37,21 @@ LandmarkOptions optionsFromConfig(const LandmarkConfig& c) {
 #define RLE_OBJECTS_PARAM(key, member, type, default_value, min, max, description) o.objects.member = static_cast<type>(c.key);
 #define RLE_HOUGH_PARAM(key, member, type, default_value, min, max, description) o.hough.member = static_cast<type>(c.key);
 #define RLE_HORIZON_PARAM(key, member, type, default_value, min, max, description) o.horizon.member = static_cast<type>(c.key);
-#include "rle_vision/landmark_params.def"
+#include "rle_vision/params/landmark_params.def"
   return o;
 }
 
 LearningOptions learningFromConfig(const LandmarkConfig& c) {
   LearningOptions o;
 #define RLE_LEARNING_PARAM(key, member, type, default_value, min, max, description) o.member = static_cast<type>(c.key);
-#include "rle_vision/landmark_params.def"
+#include "rle_vision/params/landmark_params.def"
   return o;
 }
 
 LearningLoopOptions learningLoopFromConfig(const LandmarkConfig& c) {
   LearningLoopOptions o;
 #define RLE_LEARNING_LOOP_PARAM(key, member, type, default_value, min, max, description) o.member = static_cast<type>(c.key);
-#include "rle_vision/landmark_params.def"
+#include "rle_vision/params/landmark_params.def"
   return o;
 }
 

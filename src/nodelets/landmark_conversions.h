@@ -4,11 +4,11 @@
 #include "rle_vision/Horizon.h"
 #include "rle_vision/LandmarkConfig.h"
 #include "rle_vision/Line.h"
-#include "rle_vision/color_learning.h"
-#include "rle_vision/color_learning_loop.h"
-#include "rle_vision/detected_line.h"
-#include "rle_vision/horizon_finder.h"
-#include "rle_vision/landmark_detector.h"
+#include "rle_vision/learning/color_learning.h"
+#include "rle_vision/learning/color_learning_loop.h"
+#include "rle_vision/landmark/detected_line.h"
+#include "rle_vision/landmark/horizon_finder.h"
+#include "rle_vision/landmark/landmark_detector.h"
 
 namespace rle_vision {
 

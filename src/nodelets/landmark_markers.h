@@ -5,8 +5,8 @@
 #include <std_msgs/Header.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include "rle_vision/camera_model.h"
-#include "rle_vision/landmark_detector.h"
+#include "rle_vision/ground/camera_model.h"
+#include "rle_vision/landmark/landmark_detector.h"
 
 namespace rle_vision {
 

@@ -23,6 +23,7 @@
 
 #include "color_range_conversions.h"
 #include "error_throttle.h"
+#include "node_settings.h"
 #include "image_conversions.h"
 #include "landmark_conversions.h"
 #include "landmark_markers.h"
@@ -30,14 +31,20 @@
 #include "processing_stats.h"
 #include "startup_params.h"
 #include "rle_vision/LineArray.h"
-#include "rle_vision/color_config.h"
-#include "rle_vision/color_learning_loop.h"
-#include "rle_vision/color_table.h"
-#include "rle_vision/landmark_detector.h"
-#include "rle_vision/overlay.h"
-#include "rle_vision/startup_wait.h"
+#include "rle_vision/io/color_config.h"
+#include "rle_vision/learning/color_learning_loop.h"
+#include "rle_vision/color/color_table.h"
+#include "rle_vision/landmark/landmark_detector.h"
+#include "rle_vision/pipeline/overlay.h"
+#include "rle_vision/common/startup_wait.h"
 
 namespace rle_vision {
+
+// What the Landmark node reads once at start: the RLE_LANDMARK_SETTING lines of its table.
+struct LandmarkSettings {
+#define RLE_LANDMARK_SETTING(key, type, default_value, min, max, description) type key = default_value;
+#include "rle_vision/params/landmark_params.def"
+};
 
 class LandmarkNodelet : public nodelet::Nodelet {
  public:
@@ -52,6 +59,7 @@ class LandmarkNodelet : public nodelet::Nodelet {
   };
 
   void onInit() override;
+  void readStartupSettings(const ros::NodeHandle& pnh);
   void advertiseAndSubscribe(ros::NodeHandle& nh, ros::NodeHandle& pnh);
   void connectCb();
   void edgesCb(const sensor_msgs::ImageConstPtr& msg);
@@ -80,7 +88,7 @@ class LandmarkNodelet : public nodelet::Nodelet {
   ros::Publisher pub_lines_, pub_horizon_, pub_markers_, pub_ranges_;
   image_transport::Publisher pub_debug_;
   std::mutex connect_mutex_;
-  bool low_priority_ = true;
+  LandmarkSettings startup_;  // read once at start
 
   std::mutex config_mutex_;
   Settings settings_;
@@ -119,13 +127,21 @@ class LandmarkNodelet : public nodelet::Nodelet {
   cv::Mat bgr_;  // the colour image converted to BGR when it is not already
 };
 
+void LandmarkNodelet::readStartupSettings(const ros::NodeHandle& pnh) {
+  std::vector<std::string> problems;
+#define RLE_LANDMARK_SETTING(key, type, default_value, min, max, description) \
+  readSetting(pnh, #key, &startup_.key, min, max, &problems);
+#include "rle_vision/params/landmark_params.def"
+  for (const std::string& problem : problems) NODELET_WARN("%s", problem.c_str());
+}
+
 void LandmarkNodelet::onInit() {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
   it_ = std::make_shared<image_transport::ImageTransport>(nh);
-  pnh.param("low_priority", low_priority_, true);
-  std::string colors_file;
-  pnh.param<std::string>("colors_file", colors_file, ros::package::getPath("rle_vision") + "/config/colors.yaml");
+  readStartupSettings(pnh);
+  const std::string colors_file =
+      startup_.colors_file.empty() ? ros::package::getPath("rle_vision") + "/config/colors.yaml" : startup_.colors_file;
   try {
     learning_loop_ = std::make_unique<ColorLearningLoop>(loadColorClasses(colors_file));
   } catch (const std::exception& e) {
@@ -149,9 +165,9 @@ void LandmarkNodelet::onInit() {
   diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
 
   worker_.start(
-      low_priority_, [this](const sensor_msgs::ImageConstPtr& msg) { process(msg); },
+      startup_.low_priority, [this](const sensor_msgs::ImageConstPtr& msg) { process(msg); },
       [this](bool niced, bool idled) {
-        if (low_priority_) {
+        if (startup_.low_priority) {
           NODELET_INFO("landmark worker runs at low priority (nice 19: %s, SCHED_IDLE: %s)", niced ? "yes" : "no",
                        idled ? "yes" : "no");
         }
@@ -174,8 +190,7 @@ void LandmarkNodelet::advertiseAndSubscribe(ros::NodeHandle& nh, ros::NodeHandle
   sub_info_ = nh.subscribe("camera_info", 1, &LandmarkNodelet::cameraInfoCb, this);
   // A restarted landmark node continues from the learned ranges the tracker still uses (its
   // latched active ranges) instead of starting over from the configured ones.
-  std::string resume_from;
-  pnh.param<std::string>("resume_from", resume_from, "tracker/active_color_ranges");
+  const std::string& resume_from = startup_.resume_from;
   if (resume_from.empty()) return;
   const boost::function<void(const ColorRangeArrayConstPtr&)> resume_cb = [this](const ColorRangeArrayConstPtr& msg) {
     if (resume_taken_.exchange(true)) return;  // only the first message (the latched state)

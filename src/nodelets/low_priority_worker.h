@@ -17,7 +17,7 @@
 
 #include <sensor_msgs/Image.h>
 
-#include "rle_vision/latest_mailbox.h"
+#include "rle_vision/common/latest_mailbox.h"
 
 namespace rle_vision {
 

@@ -6,6 +6,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <chrono>
 #include <mutex>
 
 #include <diagnostic_updater/diagnostic_updater.h>
@@ -20,6 +21,16 @@ inline double threadCpuMs() {
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
 }
+
+// When a frame's processing started, by the wall clock and by the thread's CPU time.
+struct FrameClock {
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  double cpu_start_ms = threadCpuMs();
+  double elapsedMs() const {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  double cpuMs() const { return threadCpuMs() - cpu_start_ms; }
+};
 
 class ProcessingStats {
  public:

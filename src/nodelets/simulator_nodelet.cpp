@@ -22,9 +22,9 @@
 #include "landmark_conversions.h"
 #include "processing_stats.h"
 #include "rle_vision/SceneTruth.h"
-#include "rle_vision/color_convert.h"
-#include "rle_vision/scene_file.h"
-#include "rle_vision/scene_simulator.h"
+#include "rle_vision/color/color_convert.h"
+#include "rle_vision/sim/scene_file.h"
+#include "rle_vision/sim/scene_simulator.h"
 
 namespace rle_vision {
 

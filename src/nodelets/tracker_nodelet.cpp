@@ -28,6 +28,8 @@
 #include "color_range_conversions.h"
 #include "image_conversions.h"
 #include "error_throttle.h"
+#include "node_settings.h"
+#include "tracker_conversions.h"
 #include "inline_callback_queue.h"
 #include "processing_stats.h"
 #include "startup_params.h"
@@ -35,13 +37,13 @@
 #include "rle_vision/CmvisionBlobs.h"
 #include "rle_vision/ColorRangeArray.h"
 #include "rle_vision/TrackerConfig.h"
-#include "rle_vision/color_config.h"
-#include "rle_vision/color_tracker.h"
-#include "rle_vision/latency_histogram.h"
-#include "rle_vision/overlay.h"
-#include "rle_vision/region_load.h"
-#include "rle_vision/segmenter.h"
-#include "rle_vision/shared_color_table.h"
+#include "rle_vision/io/color_config.h"
+#include "rle_vision/tracking/color_tracker.h"
+#include "rle_vision/common/latency_histogram.h"
+#include "rle_vision/pipeline/overlay.h"
+#include "rle_vision/segment/region_load.h"
+#include "rle_vision/segment/segmenter.h"
+#include "rle_vision/color/shared_color_table.h"
 
 namespace rle_vision {
 
@@ -117,11 +119,22 @@ TrackerNodelet::~TrackerNodelet() {
   if (frame_thread_.joinable()) frame_thread_.join();
 }
 
+// What the Tracker reads once at start: the RLE_TRACKER_SETTING lines of its table.
+struct TrackerSettings {
+#define RLE_TRACKER_SETTING(key, type, default_value, min, max, description) type key = default_value;
+#include "rle_vision/params/tracker_params.def"
+};
+
 void TrackerNodelet::onInit() {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
-  int realtime_priority = 0;
-  pnh.param("realtime_priority", realtime_priority, 0);
+  TrackerSettings settings;
+  std::vector<std::string> problems;
+#define RLE_TRACKER_SETTING(key, type, default_value, min, max, description) \
+  readSetting(pnh, #key, &settings.key, min, max, &problems);
+#include "rle_vision/params/tracker_params.def"
+  for (const std::string& problem : problems) NODELET_WARN("%s", problem.c_str());
+  const int realtime_priority = settings.realtime_priority;
   auto realtime_promise = std::make_shared<std::promise<bool>>();
   std::future<bool> realtime = realtime_promise->get_future();
   frame_thread_ = std::thread([this, realtime_priority, realtime_promise] {
@@ -153,12 +166,11 @@ void TrackerNodelet::onInit() {
     if (realtime_priority <= 0) NODELET_INFO("tracker frames run at normal priority, in the thread that delivers them");
   }
   it_ = std::make_shared<image_transport::ImageTransport>(frame_nh);
-  pnh.param("queue_size", queue_size_, 1);
-  queue_size_ = std::max(1, queue_size_);
-  pnh.param("publish_cmvision_blobs", publish_cmvision_blobs_, false);
+  queue_size_ = settings.queue_size;
+  publish_cmvision_blobs_ = settings.publish_cmvision_blobs;
 
-  std::string colors_file;
-  pnh.param<std::string>("colors_file", colors_file, ros::package::getPath("rle_vision") + "/config/colors.yaml");
+  const std::string colors_file =
+      settings.colors_file.empty() ? ros::package::getPath("rle_vision") + "/config/colors.yaml" : settings.colors_file;
   try {
     table_.store(std::make_shared<const ColorTable>(loadColorClasses(colors_file)));
   } catch (const std::exception& e) {
@@ -207,25 +219,14 @@ void TrackerNodelet::reconfigureCb(TrackerConfig& config, uint32_t /*level*/) {
     NODELET_WARN("connectivity must be 4 or 8, got %d: using 8", config.connectivity);
     config.connectivity = 8;
   }
-  for (double* value : {&config.tracking_gate_px, &config.max_area_ratio, &config.velocity_smoothing}) {
-    if (!std::isfinite(*value)) {
-      NODELET_WARN("a tracker parameter is not a finite number: keeping the previous value");
-      std::lock_guard<std::mutex> lock(config_mutex_);
-      config.tracking_gate_px = tracker_options_.gate_px;
-      config.max_area_ratio = tracker_options_.max_area_ratio;
-      config.velocity_smoothing = tracker_options_.velocity_smoothing;
-      break;
-    }
-  }
   std::lock_guard<std::mutex> lock(config_mutex_);
-  segmenter_options_.connectivity = config.connectivity == 4 ? Connectivity::Four : Connectivity::Eight;
-  segmenter_options_.min_area_px = static_cast<uint32_t>(std::max(1, config.min_area_px));
-  tracker_options_.gate_px = config.tracking_gate_px;
-  tracker_options_.max_area_ratio = config.max_area_ratio;
-  tracker_options_.max_missed_frames = config.max_missed_frames;
-  tracker_options_.velocity_smoothing = config.velocity_smoothing;
-  tracker_options_.limits.min_track_area_px = static_cast<uint32_t>(std::max(1, config.min_track_area_px));
-  tracker_options_.limits.max_regions_per_class = static_cast<uint32_t>(std::max(1, config.max_regions_per_class));
+  const std::string not_finite = nonFiniteTrackerParam(config);
+  if (!not_finite.empty()) {
+    NODELET_WARN("%s is not a finite number: keeping the previous tracker parameters", not_finite.c_str());
+    configFromOptions(segmenter_options_, tracker_options_, &config);  // rqt_reconfigure shows what is in effect
+    return;
+  }
+  optionsFromConfig(config, &segmenter_options_, &tracker_options_);
 }
 
 void TrackerNodelet::colorRangesCb(const ColorRangeArrayConstPtr& msg) {
@@ -261,17 +262,14 @@ void TrackerNodelet::publishActiveRanges(const ColorTable& table, const ros::Tim
 }
 
 void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
-  const auto start = std::chrono::steady_clock::now();
-  const double cpu_start_ms = threadCpuMs();
-  PixelFormat format;
-  cv::Mat image;
-  std::string error;
-  if (!viewImage(*msg, &format, &image, &error)) {
-    if (input_errors_.shouldLog(error)) {
-      NODELET_ERROR("dropping image on %s: %s", getNodeHandle().resolveName("image_raw").c_str(), error.c_str());
-    }
+  const FrameClock clock;
+  CameraFrame frame;
+  if (!viewCameraImage(*msg, getNodeHandle().resolveName("image_raw"), &input_errors_, &frame,
+                       [this](const std::string& text) { NODELET_ERROR("%s", text.c_str()); })) {
     return;
   }
+  const PixelFormat format = frame.format;
+  const cv::Mat& image = frame.image;
   const std::shared_ptr<const ColorTable> table = table_.load();
   if (format == PixelFormat::MONO8 && table->chromaClasses() != 0 && !warned_mono_.exchange(true)) {
     NODELET_WARN("mono8 images carry no colour: the %d classes that constrain chroma are skipped "
@@ -302,9 +300,8 @@ void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
   for (const TrackedBlob& blob : blobs_) {
     out->blobs.push_back(blobToMsg(blob, table->classes()[blob.region.label - 1].name));
   }
-  out->processing_time_ms = static_cast<float>(
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-  const double cpu_ms = threadCpuMs() - cpu_start_ms;  // the same span as processing_time_ms
+  out->processing_time_ms = static_cast<float>(clock.elapsedMs());
+  const double cpu_ms = clock.cpuMs();  // the same span as processing_time_ms
   pub_blobs_.publish(out);
   const double latency_ms = (ros::Time::now() - msg->header.stamp).toSec() * 1e3;
   if (ros::Time::useSystemTime() && latency_ms > -1e3 && latency_ms < 1e4) {  // a live camera's stamp

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string>
 
-#include "rle_vision/color_table.h"
-#include "rle_vision/color_config.h"
+#include "rle_vision/color/color_table.h"
+#include "rle_vision/io/color_config.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

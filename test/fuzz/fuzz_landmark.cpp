@@ -8,9 +8,9 @@
 
 #include <opencv2/core.hpp>
 
-#include "rle_vision/color_learning.h"
-#include "rle_vision/config_error.h"
-#include "rle_vision/landmark_detector.h"
+#include "rle_vision/learning/color_learning.h"
+#include "rle_vision/io/config_error.h"
+#include "rle_vision/landmark/landmark_detector.h"
 
 using namespace rle_vision;
 

@@ -3,9 +3,9 @@
 #include <cstdint>
 #include <string>
 
-#include "rle_vision/landmark_params_file.h"
-#include "rle_vision/scene_file.h"
-#include "rle_vision/scene_simulator.h"
+#include "rle_vision/io/landmark_params_file.h"
+#include "rle_vision/sim/scene_file.h"
+#include "rle_vision/sim/scene_simulator.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -8,8 +8,8 @@
 
 #include <opencv2/core.hpp>
 
-#include "rle_vision/blob_tracker.h"
-#include "rle_vision/segmenter.h"
+#include "rle_vision/tracking/blob_tracker.h"
+#include "rle_vision/segment/segmenter.h"
 
 using namespace rle_vision;
 

@@ -5,7 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "../../src/nodelets/blob_conversions.h"
-#include "rle_vision/segmenter.h"
+#include "rle_vision/segment/segmenter.h"
 
 namespace rle_vision {
 namespace {

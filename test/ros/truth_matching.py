@@ -97,7 +97,7 @@ def line_angle_difference(a, b):
 def near_segment(detected, truth, angle_tol_deg, distance_tol_px):
     """The same edge judged at the truth segment: angles within the tolerance, the detected
     line within distance_tol_px of the truth's midpoint, the segments overlapping along it
-    (as bench/line_matching.h nearSegment)."""
+    (as src/tools/eval/line_matching.h nearSegment)."""
     if line_angle_difference(detected.theta, truth.theta) > math.radians(angle_tol_deg):
         return False
     mx, my = 0.5 * (truth.x1 + truth.x2), 0.5 * (truth.y1 + truth.y2)

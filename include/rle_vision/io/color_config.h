@@ -1,0 +1,22 @@
+// Reading and writing colour classes. Every error names the file, the line and the reason,
+// e.g. "config/colors.yaml:12: 'min' must be a list of 3 integers 0..255".
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "rle_vision/color/color_class.h"
+#include "rle_vision/io/config_error.h"
+
+namespace rle_vision {
+
+// colors.yaml (see config/colors.yaml) or a CMVision colors.txt ([Colors] and [Thresholds]
+// sections; the format is chosen by content, not by name). Throws ConfigError.
+std::vector<ColorClass> loadColorClasses(const std::string& path);
+std::vector<ColorClass> parseColorClassesYaml(const std::string& text, const std::string& origin);
+std::vector<ColorClass> parseCmvisionColors(const std::string& text, const std::string& origin);
+
+// Writes classes as colors.yaml text (loadColorClasses reads it back unchanged).
+std::string colorClassesToYaml(const std::vector<ColorClass>& classes);
+
+}  // namespace rle_vision

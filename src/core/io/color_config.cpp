@@ -1,0 +1,157 @@
+#include <algorithm>
+#include <regex>
+#include <sstream>
+
+#include "rle_vision/io/color_config.h"
+#include "io/yaml_reader.h"
+
+namespace rle_vision {
+namespace {
+
+std::string stripComment(const std::string& line) {
+  const size_t hash = line.find('#');
+  return hash == std::string::npos ? line : line.substr(0, hash);
+}
+
+bool isBlank(const std::string& s) { return s.find_first_not_of(" \t\r") == std::string::npos; }
+
+// True when the text is a CMVision colors.txt: it has a [Colors] section header.
+bool looksLikeCmvision(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    const std::string s = stripComment(line);
+    if (s.find("[Colors]") != std::string::npos) return true;
+    if (!isBlank(s)) return false;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<ColorClass> parseColorClassesYaml(const std::string& text, const std::string& origin) {
+  using namespace yaml_reader;
+  const YAML::Node root = parse(text, origin);
+  if (!root.IsMap() || !root["classes"]) fail(origin, root, "expected a top-level 'classes:' list");
+  checkKeys(origin, root, {"classes"});
+  const YAML::Node list = root["classes"];
+  if (!list.IsSequence()) fail(origin, list, "'classes' must be a list");
+  std::vector<ColorClass> classes;
+  for (const YAML::Node& node : list) {
+    checkKeys(origin, node, {"name", "space", "min", "max", "display_rgb", "min_area_px"});
+    ColorClass c;
+    c.name = stringValue(origin, node, "name", "");
+    if (c.name.empty()) fail(origin, node, "every class needs a non-empty 'name'");
+    const std::string space = stringValue(origin, node, "space", "YUV");
+    if (!parseColorSpace(space, &c.space)) {
+      fail(origin, node["space"], "unknown colour space '" + space + "' (use YUV, RGB or HSV)");
+    }
+    if (!node["min"] || !node["max"]) fail(origin, node, "class '" + c.name + "' needs 'min' and 'max'");
+    c.min = triple<uint8_t>(origin, node, "min", c.min, 0, 255, "integers 0..255");
+    c.max = triple<uint8_t>(origin, node, "max", c.max, 0, 255, "integers 0..255");
+    c.display_rgb = triple<uint8_t>(origin, node, "display_rgb", c.display_rgb, 0, 255, "integers 0..255");
+    c.min_area_px = static_cast<uint32_t>(number(origin, node, "min_area_px", 1, 1, 1e9));
+    c.source = "config";
+    classes.push_back(c);
+  }
+  const std::string problem = validateColorClasses(classes);
+  if (!problem.empty()) fail(origin, list, problem);
+  return classes;
+}
+
+std::vector<ColorClass> parseCmvisionColors(const std::string& text, const std::string& origin) {
+  static const std::regex color_line(
+      R"(^\s*\(\s*(\d+)\s*,\s*(\d+)\s*,\s*(\d+)\s*\)\s+([-+0-9.eE]+)\s+(\d+)\s+(\S+)\s*$)");
+  static const std::regex threshold_line(
+      R"(^\s*\(\s*(\d+)\s*:\s*(\d+)\s*,\s*(\d+)\s*:\s*(\d+)\s*,\s*(\d+)\s*:\s*(\d+)\s*\)\s*$)");
+  enum class Section { None, Colors, Thresholds } section = Section::None;
+  std::vector<ColorClass> classes;
+  std::vector<int> class_lines;
+  size_t thresholds = 0;
+  std::istringstream in(text);
+  std::string raw;
+  int line_number = 0;
+  auto byte = [&](const std::string& s) {  // s is all digits (the regexes say so), maybe very many
+    const size_t first = std::min(s.find_first_not_of('0'), s.size());
+    if (s.size() - first > 3 || (s.size() > first && std::stoi(s.substr(first)) > 255)) {
+      yaml_reader::fail(origin, line_number, "value " + s + " is larger than 255");
+    }
+    return static_cast<uint8_t>(s.size() > first ? std::stoi(s.substr(first)) : 0);
+  };
+  while (std::getline(in, raw)) {
+    ++line_number;
+    const std::string line = stripComment(raw);
+    if (isBlank(line)) continue;
+    if (line.find("[Colors]") != std::string::npos) {
+      section = Section::Colors;
+      continue;
+    }
+    if (line.find("[Thresholds]") != std::string::npos) {
+      section = Section::Thresholds;
+      continue;
+    }
+    std::smatch m;
+    if (section == Section::Colors) {
+      if (!std::regex_match(line, m, color_line)) {
+        yaml_reader::fail(origin, line_number, "expected '(r,g,b) merge expected name', got '" + line + "'");
+      }
+      ColorClass c;
+      c.display_rgb = Channels{{byte(m[1]), byte(m[2]), byte(m[3])}};
+      c.name = m[6];
+      c.space = ColorSpace::YUV;
+      classes.push_back(c);
+      class_lines.push_back(line_number);
+    } else if (section == Section::Thresholds) {
+      if (!std::regex_match(line, m, threshold_line)) {
+        yaml_reader::fail(origin, line_number, "expected '(y0:y1,u0:u1,v0:v1)', got '" + line + "'");
+      }
+      if (thresholds >= classes.size()) {
+        yaml_reader::fail(origin, line_number, "more [Thresholds] lines than [Colors] lines");
+      }
+      ColorClass& c = classes[thresholds++];
+      for (int ch = 0; ch < 3; ++ch) {
+        c.min[ch] = byte(m[1 + 2 * ch]);
+        c.max[ch] = byte(m[2 + 2 * ch]);
+        if (c.min[ch] > c.max[ch]) {
+          yaml_reader::fail(origin, line_number, "range " + std::string(m[1 + 2 * ch]) + ":" +
+                                                     std::string(m[2 + 2 * ch]) + " has its low end above its high end");
+        }
+      }
+    } else {
+      yaml_reader::fail(origin, line_number, "text before the [Colors] section: '" + line + "'");
+    }
+  }
+  if (classes.empty()) yaml_reader::fail(origin, line_number, "no colours in the [Colors] section");
+  if (thresholds < classes.size()) {
+    yaml_reader::fail(origin, class_lines[thresholds],
+                      "colour '" + classes[thresholds].name + "' has no line in [Thresholds]");
+  }
+  const std::string problem = validateColorClasses(classes);
+  if (!problem.empty()) yaml_reader::fail(origin, class_lines.front(), problem);
+  return classes;
+}
+
+std::vector<ColorClass> loadColorClasses(const std::string& path) {
+  const std::string text = yaml_reader::readFile(path);
+  return looksLikeCmvision(text) ? parseCmvisionColors(text, path) : parseColorClassesYaml(text, path);
+}
+
+std::string colorClassesToYaml(const std::vector<ColorClass>& classes) {
+  std::ostringstream out;
+  auto list = [&](const Channels& c) {
+    out << "[" << int(c[0]) << ", " << int(c[1]) << ", " << int(c[2]) << "]";
+  };
+  out << "classes:\n";
+  for (const ColorClass& c : classes) {
+    out << "  - name: " << c.name << "\n    space: " << toString(c.space) << "\n    min: ";
+    list(c.min);
+    out << "\n    max: ";
+    list(c.max);
+    out << "\n    display_rgb: ";
+    list(c.display_rgb);
+    out << "\n    min_area_px: " << c.min_area_px << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace rle_vision

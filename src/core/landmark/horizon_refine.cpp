@@ -1,0 +1,286 @@
+#include "landmark/horizon_refine.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rle_vision {
+namespace horizon {
+namespace {
+
+constexpr double kDeg = M_PI / 180;
+constexpr double kAngleStepDeg = 0.25;  // the robust fit's angle steps
+constexpr int kSampleStride = 4;        // every 4th row and column samples the sides' edge values
+
+// P(a > b) + P(a == b) / 2 from two histograms of 256 bins (normalised or not).
+double probabilityGreater(const double* a, double a_total, const double* b, double b_total) {
+  if (a_total <= 0 || b_total <= 0) return 0.5;
+  double below = 0, p = 0;
+  for (int v = 0; v < 256; ++v) {
+    p += a[v] * (below + 0.5 * b[v]);
+    below += b[v];
+  }
+  return p / (a_total * b_total);
+}
+
+// The value below which `percentile` % of a histogram's samples lie.
+double percentileOf(const int* histogram, int total, double percentile) {
+  if (total == 0) return 0;
+  const int target = static_cast<int>(std::ceil(percentile / 100.0 * total));
+  int seen = 0;
+  for (int v = 0; v < 256; ++v) {
+    seen += histogram[v];
+    if (seen >= target) return v;
+  }
+  return 255;
+}
+
+// Calls visit(first, last, sky) for the samples of row y at x = first, first + stride, ...,
+// last that lie farther than `band` from the line on its sky side (sky = true) or ground side.
+template <class Visit>
+void sideRanges(const SplitLine& line, double y, int width, double band, Visit&& visit) {
+  // d(x) = nx x + ny y - rho; the sky side is d < -band, the ground side d > band.
+  const double base = line.ny * y - line.rho;
+  if (std::fabs(line.nx) < 1e-12) {
+    if (base < -band) visit(0, width - 1, true);
+    if (base > band) visit(0, width - 1, false);
+    return;
+  }
+  // x where d = -band and d = +band (clamped to just outside the row before converting); the
+  // sky lies on the side where d decreases.
+  auto clampX = [width](double x) { return std::min(std::max(x, -1.0), static_cast<double>(width)); };
+  const double x_sky = clampX((-band - base) / line.nx), x_ground = clampX((band - base) / line.nx);
+  if (line.nx > 0) {  // d grows with x: sky at small x
+    visit(0, std::min(width - 1, static_cast<int>(std::ceil(x_sky)) - 1), true);
+    visit(std::max(0, static_cast<int>(std::floor(x_ground)) + 1), width - 1, false);
+  } else {
+    visit(std::max(0, static_cast<int>(std::floor(x_sky)) + 1), width - 1, true);
+    visit(0, std::min(width - 1, static_cast<int>(std::ceil(x_ground)) - 1), false);
+  }
+}
+
+double bhattacharyyaDistance(const SideStats& a, const SideStats& b) {
+  double c[9], d[3];
+  for (int k = 0; k < 9; ++k) c[k] = 0.5 * (a.cov[k] + b.cov[k]);
+  for (int k = 0; k < 3; ++k) d[k] = a.mean[k] - b.mean[k];
+  const double det = covarianceDet(c);
+  // d^T c^-1 d through the adjugate.
+  const double adj[9] = {c[4] * c[8] - c[5] * c[7], c[2] * c[7] - c[1] * c[8], c[1] * c[5] - c[2] * c[4],
+                         c[5] * c[6] - c[3] * c[8], c[0] * c[8] - c[2] * c[6], c[2] * c[3] - c[0] * c[5],
+                         c[3] * c[7] - c[4] * c[6], c[1] * c[6] - c[0] * c[7], c[0] * c[4] - c[1] * c[3]};
+  double quad = 0;
+  for (int i = 0; i < 3; ++i) {
+    double row = 0;
+    for (int j = 0; j < 3; ++j) row += adj[i * 3 + j] * d[j];
+    quad += d[i] * row;
+  }
+  return 0.125 * quad / det + 0.5 * std::log(det / std::sqrt(covarianceDet(a.cov) * covarianceDet(b.cov)));
+}
+
+}  // namespace
+
+double HorizonRefiner::threshold(const cv::Mat& edges, const SplitLine& line, double band, const RefineOptions& o) {
+  // The sky's own edge values (away from the band): a horizon point must beat most of them.
+  int histogram[256] = {0}, samples = 0;
+  for (int y = 0; y < edges.rows; y += kSampleStride) {
+    const uint8_t* e = edges.ptr<uint8_t>(y);
+    sideRanges(line, y, edges.cols, band, [&](int first, int last, bool sky) {
+      if (!sky) return;
+      for (int x = (first + kSampleStride - 1) / kSampleStride * kSampleStride; x <= last; x += kSampleStride) {
+        ++histogram[e[x]];
+        ++samples;
+      }
+    });
+  }
+  double t = std::max(percentileOf(histogram, samples, o.sky_percentile), o.edge_floor);
+  // The scanlines across the band (columns, rows for steep lines), and the typical maximum.
+  const bool flat = std::fabs(line.ny) >= std::fabs(line.nx);
+  const int count = flat ? edges.cols : edges.rows, length = flat ? edges.rows : edges.cols;
+  const double along = flat ? line.ny : line.nx, across = flat ? line.nx : line.ny;
+  scans_.assign(count, Scan{0, -1});
+  maxima_.clear();
+  for (int f = 0; f < count; ++f) {
+    const double centre = (line.rho - across * f) / along;
+    const int lo = std::max(static_cast<int>(std::floor(centre - band)), 1);
+    const int hi = std::min(static_cast<int>(std::ceil(centre + band)), length - 2);
+    if (hi - lo < 2) continue;
+    scans_[f] = {lo, hi};
+    int peak = 0;
+    for (int k = lo; k <= hi; ++k) peak = std::max<int>(peak, flat ? edges.ptr<uint8_t>(k)[f] : edges.ptr<uint8_t>(f)[k]);
+    maxima_.push_back(peak);
+  }
+  if (!maxima_.empty()) {
+    std::nth_element(maxima_.begin(), maxima_.begin() + maxima_.size() / 2, maxima_.end());
+    t = std::max(t, o.peak_ratio * maxima_[maxima_.size() / 2]);
+  }
+  return t;
+}
+
+void HorizonRefiner::scanPoints(const cv::Mat& edges, const SplitLine& line, double threshold) {
+  const bool flat = std::fabs(line.ny) >= std::fabs(line.nx);
+  const bool from_low_end = (flat ? line.ny : line.nx) > 0;  // the sky side is at the low coordinates
+  px_.clear();
+  py_.clear();
+  for (int f = 0; f < static_cast<int>(scans_.size()); ++f) {
+    const Scan& s = scans_[f];
+    if (s.hi < s.lo) continue;
+    auto at = [&](int k) -> int { return flat ? edges.ptr<uint8_t>(k)[f] : edges.ptr<uint8_t>(f)[k]; };
+    for (int step = 0; step <= s.hi - s.lo; ++step) {
+      const int k = from_low_end ? s.lo + step : s.hi - step;
+      const int c = at(k), l = at(k - 1), r = at(k + 1);
+      if (c < threshold || c < l || c < r || (l == c && r == c)) continue;
+      const double curvature = l - 2.0 * c + r;
+      const double position = k + (curvature < 0 ? 0.5 * (l - r) / curvature : 0.0);  // parabola vertex
+      px_.push_back(flat ? f : position);
+      py_.push_back(flat ? position : f);
+      break;
+    }
+  }
+}
+
+bool HorizonRefiner::robustFit(const SplitLine& start, const RefineOptions& o, SplitLine* fitted) {
+  const size_t n = px_.size();
+  // A local Hough: for angles around the hypothesis, the 1-px offset bin whose window of
+  // +-inlier_px holds the most points.
+  const int window = static_cast<int>(std::lround(o.inlier_px));
+  const int angle_steps = static_cast<int>(std::lround(o.angle_range_deg / kAngleStepDeg));
+  int best_votes = -1;
+  double best_angle = start.angle_deg, best_rho = start.rho;
+  offsets_.resize(n);
+  for (int k = -angle_steps; k <= angle_steps; ++k) {
+    const double a = (start.angle_deg + k * kAngleStepDeg) * kDeg, nx = -std::sin(a), ny = std::cos(a);
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; i < n; ++i) {
+      offsets_[i] = px_[i] * nx + py_[i] * ny;
+      lo = std::min(lo, offsets_[i]);
+      hi = std::max(hi, offsets_[i]);
+    }
+    lo = std::floor(lo);
+    histogram_.assign(static_cast<size_t>(hi - lo) + 2, 0);
+    for (size_t i = 0; i < n; ++i) ++histogram_[static_cast<size_t>(offsets_[i] - lo)];
+    const int bins = static_cast<int>(histogram_.size());
+    int votes = 0;
+    for (int b = 0; b < std::min(window, bins); ++b) votes += histogram_[b];
+    for (int j = 0; j < bins; ++j) {  // the window [j - window, j + window]
+      if (j + window < bins) votes += histogram_[j + window];
+      if (j - window - 1 >= 0) votes -= histogram_[j - window - 1];
+      if (votes > best_votes) {
+        best_votes = votes;
+        best_angle = start.angle_deg + k * kAngleStepDeg;
+        best_rho = lo + j + 0.5;
+      }
+    }
+  }
+  // Total least squares on its points, then twice more with Tukey weights.
+  double nx = -std::sin(best_angle * kDeg), ny = std::cos(best_angle * kDeg), rho = best_rho;
+  weights_.resize(n);
+  for (size_t i = 0; i < n; ++i) weights_[i] = std::fabs(px_[i] * nx + py_[i] * ny - rho) <= o.inlier_px + 0.5 ? 1.0 : 0.0;
+  for (int iteration = 0; iteration < 3; ++iteration) {
+    double w = 0, cx = 0, cy = 0;
+    for (size_t i = 0; i < n; ++i) {
+      w += weights_[i];
+      cx += weights_[i] * px_[i];
+      cy += weights_[i] * py_[i];
+    }
+    if (w < 3) return false;
+    cx /= w;
+    cy /= w;
+    double sxx = 0, sxy = 0, syy = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const double dx = px_[i] - cx, dy = py_[i] - cy;
+      sxx += weights_[i] * dx * dx;
+      sxy += weights_[i] * dx * dy;
+      syy += weights_[i] * dy * dy;
+    }
+    const double direction = 0.5 * std::atan2(2 * sxy, sxx - syy);  // of the largest spread
+    nx = -std::sin(direction);
+    ny = std::cos(direction);
+    if (ny < 0 || (ny == 0 && nx > 0)) {
+      nx = -nx;
+      ny = -ny;
+    }
+    rho = nx * cx + ny * cy;
+    for (size_t i = 0; i < n; ++i) {
+      const double u = std::min(std::fabs(px_[i] * nx + py_[i] * ny - rho) / (2 * o.inlier_px), 1.0);
+      weights_[i] = (1 - u * u) * (1 - u * u);
+    }
+  }
+  fitted->nx = nx;
+  fitted->ny = ny;
+  fitted->rho = rho;
+  fitted->angle_deg = std::atan2(-nx, ny) / kDeg;
+  return true;
+}
+
+RefinedHorizon HorizonRefiner::refine(const cv::Mat& edges, const RegionGrid& fine, const Hypothesis& h,
+                                      const RefineOptions& o) {
+  RefinedHorizon out;
+  out.line = SplitLine::fromAngleDistance(h.angle_deg, h.centre_distance, edges.cols, edges.rows);
+  const double band = o.band_cells * fine.cell();
+  scanPoints(edges, out.line, threshold(edges, out.line, band, o));
+  out.points = static_cast<int>(px_.size());
+  out.scanlines = static_cast<int>(std::count_if(scans_.begin(), scans_.end(), [](const Scan& s) { return s.hi >= s.lo; }));
+  SplitLine fitted;
+  if (out.points >= o.min_points && robustFit(out.line, o, &fitted)) out.line = fitted;
+  out.t_min = INFINITY;
+  out.t_max = -INFINITY;
+  double squares = 0;
+  for (size_t i = 0; i < px_.size(); ++i) {
+    const double d = out.line.signedDistance(px_[i], py_[i]);
+    if (std::fabs(d) > o.inlier_px) continue;
+    ++out.inliers;
+    squares += d * d;
+    const double t = px_[i] * out.line.ny - py_[i] * out.line.nx;  // along the direction (cos a, sin a)
+    out.t_min = std::min(out.t_min, t);
+    out.t_max = std::max(out.t_max, t);
+  }
+  out.rms = out.inliers > 0 ? std::sqrt(squares / out.inliers) : 0;
+  out.evidence = evidence(edges, fine, out.line, o);
+  return out;
+}
+
+Evidence HorizonRefiner::evidence(const cv::Mat& edges, const RegionGrid& fine, const SplitLine& line,
+                                  const RefineOptions& o) {
+  Evidence e;
+  double sky_sums[kMoments], ground_sums[kMoments];
+  fine.skySideSums(line, sky_sums);
+  for (int k = 0; k < kMoments; ++k) ground_sums[k] = fine.total()[k] - sky_sums[k];
+  const SideStats sky = sideStats(sky_sums, o.noise_variance), ground = sideStats(ground_sums, o.noise_variance);
+  if (std::min(sky.n, ground.n) < 4) return e;
+  e.separation = 1 - std::exp(-bhattacharyyaDistance(sky, ground));
+  // Brightness: the cells clear of the line (their centres farther than a cell from it).
+  const int s = fine.cell();
+  double sky_luma[256] = {0}, ground_luma[256] = {0}, sky_cells = 0, ground_cells = 0;
+  // In cell coordinates the line is nx (c s + (s-1)/2) + ny (r s + (s-1)/2) = rho.
+  SplitLine cells = line;
+  cells.rho = (line.rho - 0.5 * (s - 1) * (line.nx + line.ny)) / s;
+  for (int r = 0; r < fine.rows(); ++r) {
+    const uint8_t* luma = fine.luma(r);
+    sideRanges(cells, r, fine.cols(), 1.0, [&](int first, int last, bool sky) {
+      for (int c = first; c <= last; ++c) ++(sky ? sky_luma : ground_luma)[luma[c]];
+      (sky ? sky_cells : ground_cells) += std::max(0, last - first + 1);
+    });
+  }
+  e.sky_brighter = probabilityGreater(sky_luma, sky_cells, ground_luma, ground_cells);
+  // Texture: edge values sampled away from the band.
+  const double band = o.band_cells * s;
+  double sky_edges[256] = {0}, ground_edges[256] = {0}, sky_samples = 0, ground_samples = 0;
+  for (int y = 0; y < edges.rows; y += kSampleStride) {
+    const uint8_t* row = edges.ptr<uint8_t>(y);
+    sideRanges(line, y, edges.cols, band, [&](int first, int last, bool sky) {
+      double* histogram = sky ? sky_edges : ground_edges;
+      double& samples = sky ? sky_samples : ground_samples;
+      for (int x = (first + kSampleStride - 1) / kSampleStride * kSampleStride; x <= last; x += kSampleStride) {
+        ++histogram[row[x]];
+        ++samples;
+      }
+    });
+  }
+  double textured = 0;
+  for (int v = static_cast<int>(std::ceil(o.edge_floor)); v < 256; ++v) textured += ground_edges[v];
+  e.ground_rougher = probabilityGreater(ground_edges, ground_samples, sky_edges, sky_samples);
+  e.ground_textured = ground_samples > 0 ? textured / ground_samples : 0;
+  return e;
+}
+
+}  // namespace horizon
+}  // namespace rle_vision

@@ -1,0 +1,71 @@
+// A horizon hypothesis refined on the edge image, and the evidence that it is a horizon
+// (private to the core).
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "landmark/horizon_regions.h"
+
+namespace rle_vision {
+namespace horizon {
+
+// How much a split looks like sky above ground, each part in [0, 1].
+struct Evidence {
+  double separation = 0;       // 1 - the Bhattacharyya coefficient of the sides' colour Gaussians
+  double sky_brighter = 0.5;   // P(a sky cell is brighter than a ground cell), ties half
+  double ground_rougher = 0.5; // P(a ground pixel's edge value exceeds a sky pixel's)
+  double ground_textured = 0;  // share of ground pixels with an edge value above the noise floor
+  double confidence() const { return separation * sky_brighter * ground_rougher * ground_textured; }
+};
+
+struct RefineOptions {
+  double band_cells = 3;        // the edge search reaches this many grid cells either side
+  double sky_percentile = 95;   // a horizon point beats this share of the sky's own edge values ...
+  double edge_floor = 4;        // ... and the edge value of a noise-level step ...
+  double peak_ratio = 0.5;      // ... and this share of the typical edge maximum along the band
+  double inlier_px = 2;         // points this close to the line fit it
+  double angle_range_deg = 3;   // the fit's angle search around the hypothesis
+  int min_points = 10;          // fewer edge points: the hypothesis line stays
+  double noise_variance = 4;    // colour noise floor (grey levels squared)
+};
+
+struct RefinedHorizon {
+  SplitLine line;
+  int points = 0;     // edge points found along the band
+  int inliers = 0;    // of them on the fitted line
+  double rms = 0;     // the inliers' rms distance from it, px
+  int scanlines = 0;  // columns (rows for steep lines) the band crosses
+  double t_min = 0, t_max = 0;  // the inliers' extent along the line (x cos a + y sin a)
+  Evidence evidence;
+};
+
+// Holds scratch buffers; reuse one instance per thread.
+class HorizonRefiner {
+ public:
+  // The hypothesis moved onto the frame's horizon edge: along every column (row, for steep
+  // lines) across the band, the first edge maximum met coming from the sky side that beats
+  // the thresholds above (the labelled top of the land; the stronger haze-to-ground step lies
+  // below it), sub-pixel; then a robust line through those points.
+  RefinedHorizon refine(const cv::Mat& edges, const RegionGrid& fine, const Hypothesis& hypothesis,
+                        const RefineOptions& options);
+  // The evidence for a line as the horizon, from the grid's colours and the edge image.
+  Evidence evidence(const cv::Mat& edges, const RegionGrid& fine, const SplitLine& line, const RefineOptions& options);
+
+ private:
+  struct Scan {
+    int lo, hi;  // the band's samples on this scanline
+  };
+  double threshold(const cv::Mat& edges, const SplitLine& line, double band, const RefineOptions& o);
+  void scanPoints(const cv::Mat& edges, const SplitLine& line, double threshold);
+  bool robustFit(const SplitLine& start, const RefineOptions& o, SplitLine* fitted);
+
+  std::vector<Scan> scans_;
+  std::vector<int> maxima_;
+  std::vector<double> px_, py_, offsets_, weights_;
+  std::vector<int> histogram_;
+};
+
+}  // namespace horizon
+}  // namespace rle_vision

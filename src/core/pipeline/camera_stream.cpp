@@ -1,0 +1,28 @@
+#include "rle_vision/pipeline/camera_stream.h"
+
+#include <stdexcept>
+
+namespace rle_vision {
+
+CameraStream::CameraStream(const std::vector<ColorClass>& classes, const CameraStreamOptions& options)
+    : table_(std::make_shared<const ColorTable>(classes)), options_(options), loop_(classes) {}
+
+void CameraStream::process(const cv::Mat& bgr, double stamp_s, Frame* frame) {
+  frame->table = table_;
+  frame->ignored_ranges.clear();
+  tracker_.process(bgr, PixelFormat::BGR8, *table_, stamp_s, &frame->blobs);
+  detector_.detectInImage(bgr, options_.landmark, &frame->landmarks);
+  const ColorLearningLoop::Step step =
+      options_.loop.enabled ? loop_.learn(bgr, frame->landmarks, detector_.edgeObjects(), stamp_s, stamp_s,
+                                          options_.learning, options_.loop.publish_period_s)
+                            : loop_.stop(options_.learning);
+  if (!step.publish) return;
+  // As the tracker does with color_ranges: a set it cannot use is reported, the table kept.
+  try {
+    table_ = std::make_shared<const ColorTable>(step.classes);
+  } catch (const std::invalid_argument& e) {
+    frame->ignored_ranges = e.what();
+  }
+}
+
+}  // namespace rle_vision
