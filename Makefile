@@ -9,7 +9,7 @@ export JOBS
 RECORD ?= 0
 export RECORD
 
-.PHONY: all deps build demo test test-readme test-asan test-core test-install fuzz bench eval bench-latency screenshot clean
+.PHONY: all deps build demo test test-readme test-asan test-core test-install fuzz bench eval train-horizon bench-latency screenshot clean
 
 all: build
 
@@ -45,6 +45,9 @@ bench: build
 
 eval: build
 	@scripts/eval.sh
+
+train-horizon: build
+	@scripts/train_horizon.sh
 
 bench-latency: build
 	@scripts/bench_latency.sh

@@ -22,6 +22,7 @@
 #include "rle_vision/pipeline/camera_stream.h"
 #include "rle_vision/learning/color_calibration.h"
 #include "rle_vision/io/color_config.h"
+#include "rle_vision/io/horizon_model_file.h"
 #include "rle_vision/segment/segmenter.h"
 #include "rle_vision/io/yolo_labels.h"
 
@@ -112,6 +113,7 @@ struct FolderScores {
 void learnedSequence(const std::vector<std::string>& paths, const ColorClass& ball, int label_class, Score* s) {
   CameraStreamOptions options;
   options.learning.from_blobs = true;
+  options.landmark.horizon.model = horizonModelFromSetting("");  // as the nodes and the CLI weigh horizons
   CameraStream stream({ball}, options);
   CameraStream::Frame frame;
   for (size_t i = 0; i < paths.size(); ++i) {

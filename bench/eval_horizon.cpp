@@ -1,22 +1,35 @@
 // make eval (horizon): our landmark path against line-detector baselines on real labelled
 // frames, in one run, one thread pinned to one CPU.
 //
-//   rle_vision_eval_horizon DIR [--params FILE] [--json OUT]
+//   rle_vision_eval_horizon DIR... [--negatives DIR]... [--sim-frames N] [--params FILE]
+//                           [--model FILE] [--json OUT] [--train-output FILE]
 //
-// DIR holds label.csv ("filename,slope,offset" or "filename,has_horizon,slope,offset"; the
-// horizon is y = slope x + offset H) and the images (in DIR/images/ or DIR/). Per method: pass
-// rate (angle error < 5 deg and Hesse distance error < 5% H; a frame without a horizon passes
-// when nothing is reported), found rate, angle and distance errors over the frames where a
-// horizon was reported, ms per frame, and for the line detectors the share of frames where a
-// segment of 40 px or more lies on the true horizon. The baselines' horizon is their longest
-// segment within 45 deg of level (OpenCV FastLineDetector, LSD, and Gauss + Canny + HoughLinesP).
+// DIR: labelled frames (label.csv: "filename,slope,offset", the horizon y = slope x + offset H,
+// or with a has_horizon column; images in DIR/images/ or DIR/), grouped by flight
+// (eval/horizon_data.h). --negatives: folders of frames without a horizon (indoor robot frames),
+// grouped by their first sub-folder. --sim-frames: that many frames of the simulator's indoor
+// scene (no horizon) and of its default scene (the true horizon) as two more groups.
+//
+// Our horizon's confidence is a model learned from the candidates' evidence: every group is
+// scored with a model fitted without it (leave one group out: no frame is scored by a model
+// that saw its flight, date or scene); that is the headline figure. Beside it: the shipped
+// model (--model, default config/horizon_model.yaml: trained on everything here, in sample),
+// the evidence product without a model, and the baselines' horizon, their longest segment
+// within 45 deg of level (OpenCV FastLineDetector, LSD, Gauss + Canny + HoughLinesP). Per
+// method: pass rate (angle error < 5 deg and Hesse distance error < 5% H; a frame without a
+// horizon passes when nothing is reported), per group and the worst, found rate, errors over
+// the frames with a horizon reported, the share of frames where a segment of 40 px or more
+// lies on the true horizon, ms per frame. Then the robustness suite: the labelled frames again
+// under perturbations (eval/horizon_data.h), ours held out against FastLineDetector.
+// --train-output writes the model fitted on every group.
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
-#include <ctime>
 #include <fstream>
-#include <functional>
 #include <iostream>
+#include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -25,15 +38,25 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/ximgproc/fast_line_detector.hpp>
 
-#include "harness.h"
+#include "eval/horizon_data.h"
 #include "eval/horizon_metrics.h"
-#include "rle_vision/landmark/landmark_detector.h"
+#include "harness.h"
+#include "rle_vision/io/horizon_model_file.h"
 #include "rle_vision/io/landmark_params_file.h"
+#include "rle_vision/landmark/landmark_detector.h"
+#include "rle_vision/sim/scene_file.h"
+#include "rle_vision/sim/scene_simulator.h"
 
 namespace {
 
 using namespace rle_vision;
-using eval::HorizonLabel;
+using eval::HorizonFrame;
+
+constexpr double kL2 = 1.0;  // the model's L2 penalty on standardised weights (fixed, not tuned)
+const char* const kHeldOut = "ours, model held out (leave one group out)";
+const char* const kShipped = "ours, shipped model (in sample)";
+const char* const kProduct = "ours, evidence product (no model)";
+const char* const kBaselines[] = {"FastLineDetector (longest level)", "LSD (longest level)", "HoughLinesP (longest level)"};
 
 struct Segment4 {
   double x1, y1, x2, y2;
@@ -43,58 +66,76 @@ struct Segment4 {
 struct Detection {
   bool found = false;
   ImageLine horizon;
-  double confidence = 1;
   std::vector<Segment4> segments;
+  double ms = 0;
 };
 
-struct MethodScore {
-  std::string name;
-  bool line_detector = true;  // reports segments ("on the horizon" rate)
-  int frames = 0, passed = 0, found = 0, on_horizon = 0, confident = 0, confident_passed = 0;
+// One frame as analysed once: its truth, our lines and horizon candidates, the baselines.
+struct FrameData {
+  std::string dataset, group;
+  bool has_horizon = false;
+  ImageLine truth;
+  int width = 0, height = 0;
+  std::vector<HorizonEstimate> candidates;
+  std::vector<int> candidate_passes;  // 1: the candidate is the true horizon
+  std::vector<Segment4> our_segments;
+  Detection product;
+  double ours_ms = 0;  // the whole landmark step with the node's defaults (the shipped model)
+  std::vector<Detection> baselines;
+};
+
+// The scores of one method over a set of frames.
+struct Score {
+  int frames = 0, passed = 0, found = 0, on_horizon = 0, horizon_frames = 0;
   std::vector<double> angle_errors, distance_errors, ms;
-  double mean(const std::vector<double>& v) const {
-    double s = 0;
-    for (double x : v) s += x;
-    return v.empty() ? 0 : s / v.size();
-  }
-  double median(std::vector<double> v) const {
-    if (v.empty()) return 0;
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-  }
+  std::map<std::string, std::pair<int, int>> groups;  // passed, frames
+  void add(const FrameData& f, const Detection& d);
+  double pct(int n) const { return frames ? 100.0 * n / frames : 0; }
 };
 
-std::vector<HorizonLabel> readLabels(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path + ": cannot open the labels");
-  std::vector<HorizonLabel> labels;
-  std::string line;
-  std::getline(in, line);  // header
-  const bool with_flag = line.find("has_horizon") != std::string::npos;
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    std::vector<std::string> fields;
-    std::stringstream row(line);
-    for (std::string f; std::getline(row, f, ',');) fields.push_back(f);
-    HorizonLabel label;
-    label.file = fields.at(0);
-    size_t k = 1;
-    if (with_flag) {
-      const std::string flag = fields.at(k++);
-      label.has_horizon = flag == "true" || flag == "True" || flag == "1";
+double mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? 0 : s / v.size();
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+void Score::add(const FrameData& f, const Detection& d) {
+  ++frames;
+  ms.push_back(d.ms);
+  found += d.found;
+  bool pass = !d.found;
+  if (f.has_horizon) {
+    ++horizon_frames;
+    for (const Segment4& s : d.segments) {
+      if (eval::segmentOnHorizon(s.x1, s.y1, s.x2, s.y2, f.truth, f.height)) {
+        ++on_horizon;
+        break;
+      }
     }
-    if (label.has_horizon) {
-      label.slope = std::stod(fields.at(k));
-      label.offset = std::stod(fields.at(k + 1));
+    pass = false;
+    if (d.found) {
+      const eval::HorizonError e = eval::horizonError(d.horizon, f.truth, f.width, f.height);
+      angle_errors.push_back(e.angle_deg);
+      distance_errors.push_back(e.distance_px);
+      pass = eval::passes(e, f.height);
     }
-    labels.push_back(label);
   }
-  return labels;
+  passed += pass;
+  auto& g = groups[f.group];
+  g.first += pass;
+  ++g.second;
 }
 
 // The longest segment within 45 deg of level, as a horizon.
-Detection longestLevelSegment(std::vector<Segment4> segments) {
+Detection longestLevelSegment(std::vector<Segment4> segments, double ms) {
   Detection d;
+  d.ms = ms;
   double longest = 0;
   for (const Segment4& s : segments) {
     const double length = std::hypot(s.x2 - s.x1, s.y2 - s.y1);
@@ -110,69 +151,8 @@ Detection longestLevelSegment(std::vector<Segment4> segments) {
 template <typename Vec4>
 std::vector<Segment4> toSegments(const std::vector<Vec4>& lines) {
   std::vector<Segment4> out;
-  for (const Vec4& l : lines) {
-    out.push_back({static_cast<double>(l[0]), static_cast<double>(l[1]), static_cast<double>(l[2]), static_cast<double>(l[3])});
-  }
+  for (const Vec4& l : lines) out.push_back({double(l[0]), double(l[1]), double(l[2]), double(l[3])});
   return out;
-}
-
-void score(MethodScore* m, const HorizonLabel& label, const Detection& d, int width, int height, double ms) {
-  ++m->frames;
-  m->ms.push_back(ms);
-  m->found += d.found;
-  const bool confident = d.found && d.confidence >= 0.5;
-  m->confident += confident;
-  if (!label.has_horizon) {
-    m->passed += !d.found;
-    return;
-  }
-  const ImageLine truth = label.line(height);
-  for (const Segment4& s : d.segments) {
-    if (eval::segmentOnHorizon(s.x1, s.y1, s.x2, s.y2, truth, height)) {
-      ++m->on_horizon;
-      break;
-    }
-  }
-  if (!d.found) return;
-  const eval::HorizonError e = eval::horizonError(d.horizon, truth, width, height);
-  m->angle_errors.push_back(e.angle_deg);
-  m->distance_errors.push_back(e.distance_px);
-  const bool pass = eval::passes(e, height);
-  m->passed += pass;
-  m->confident_passed += confident && pass;
-}
-
-void report(const std::vector<MethodScore>& methods, const std::string& dir, const std::string& json_path) {
-  std::printf("%-34s %6s %6s %8s %8s %9s %9s %10s %8s\n", "method", "pass", "found", "angle", "angle", "distance",
-              "on hor.", "conf>=0.5", "ms/frame");
-  std::printf("%-34s %6s %6s %8s %8s %9s %9s %10s %8s\n", "", "%", "%", "mean deg", "med deg", "mean px", "%",
-              "pass %", "mean");
-  std::ostringstream json;
-  json << "{\n  \"data\": \"" << dir << "\",\n  \"machine\": \"" << bench::machineName() << "\",\n  \"date\": \""
-       << bench::todayUtc()
-       << "\",\n  \"frames\": " << (methods.empty() ? 0 : methods[0].frames) << ",\n  \"methods\": {";
-  for (size_t i = 0; i < methods.size(); ++i) {
-    const MethodScore& m = methods[i];
-    const double n = std::max(1, m.frames);
-    const double pass = 100.0 * m.passed / n, found = 100.0 * m.found / n, on = 100.0 * m.on_horizon / n;
-    const double confident_pass = m.confident ? 100.0 * m.confident_passed / m.confident : 100.0;
-    std::printf("%-34s %6.1f %6.1f %8.2f %8.2f %9.1f %9s %10.1f %8.2f\n", m.name.c_str(), pass, found,
-                m.mean(m.angle_errors), m.median(m.angle_errors), m.mean(m.distance_errors),
-                m.line_detector ? cv::format("%.1f", on).c_str() : "-", confident_pass, m.mean(m.ms));
-    json << (i ? "," : "") << "\n    \"" << m.name << "\": {\"pass_pct\": " << pass << ", \"found_pct\": " << found
-         << ", \"angle_error_mean_deg\": " << m.mean(m.angle_errors)
-         << ", \"angle_error_median_deg\": " << m.median(m.angle_errors)
-         << ", \"distance_error_mean_px\": " << m.mean(m.distance_errors)
-         << ", \"distance_error_median_px\": " << m.median(m.distance_errors)
-         << ", \"on_horizon_pct\": " << (m.line_detector ? on : -1) << ", \"confident_frames\": " << m.confident
-         << ", \"confident_pass_pct\": " << confident_pass << ", \"ms_per_frame\": " << m.mean(m.ms)
-         << ", \"ms_per_frame_median\": " << m.median(m.ms) << "}";
-  }
-  json << "\n  }\n}\n";
-  if (!json_path.empty()) {
-    std::ofstream(json_path) << json.str();
-    std::printf("wrote %s\n", json_path.c_str());
-  }
 }
 
 template <typename Body>
@@ -182,84 +162,187 @@ double timeMs(Body body) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Everything each frame is run through (buffers kept across frames).
+struct Methods {
+  LandmarkOptions options;       // the node's defaults: with the shipped model when there is one
+  LandmarkOptions no_model;      // the same without it (the candidates' evidence, the product)
+  LandmarkDetector detector;
+  HorizonDetector candidates;
+  cv::Ptr<cv::ximgproc::FastLineDetector> fld = cv::ximgproc::createFastLineDetector();
+  cv::Ptr<cv::LineSegmentDetector> lsd = cv::createLineSegmentDetector(cv::LSD_REFINE_STD);
+  cv::Mat gray;
+};
+
+std::vector<Detection> baselines(const cv::Mat& image, Methods& m, bool all) {
+  std::vector<cv::Vec4f> fld_lines, lsd_lines;
+  std::vector<cv::Vec4i> hough_lines;
+  std::vector<Detection> out;
+  double ms = timeMs([&] {
+    cv::cvtColor(image, m.gray, cv::COLOR_BGR2GRAY);
+    m.fld->detect(m.gray, fld_lines);
+  });
+  out.push_back(longestLevelSegment(toSegments(fld_lines), ms));
+  if (!all) return out;
+  ms = timeMs([&] {
+    cv::cvtColor(image, m.gray, cv::COLOR_BGR2GRAY);
+    m.lsd->detect(m.gray, lsd_lines);
+  });
+  out.push_back(longestLevelSegment(toSegments(lsd_lines), ms));
+  ms = timeMs([&] {
+    cv::Mat blurred, edges;
+    cv::cvtColor(image, m.gray, cv::COLOR_BGR2GRAY);
+    cv::GaussianBlur(m.gray, blurred, cv::Size(5, 5), 1.5);
+    cv::Canny(blurred, edges, 30, 90);
+    cv::HoughLinesP(edges, hough_lines, 1, CV_PI / 180, 40, 40, 5);
+  });
+  out.push_back(longestLevelSegment(toSegments(hough_lines), ms));
+  return out;
+}
+
+// Our lines and every horizon candidate with its evidence, the product's choice, the baselines.
+FrameData analyse(const cv::Mat& image, bool has_horizon, const ImageLine& truth, Methods& m, bool all_baselines) {
+  FrameData f;
+  f.has_horizon = has_horizon;
+  f.truth = truth;
+  f.width = image.cols;
+  f.height = image.rows;
+  LandmarkResult result;
+  f.ours_ms = timeMs([&] { m.detector.detectInImage(image, m.options, &result); });
+  LandmarkResult plain;
+  const double product_ms = timeMs([&] { m.detector.detectInImage(image, m.no_model, &plain); });
+  f.product.found = plain.horizon.found;
+  f.product.horizon = plain.horizon.line;
+  f.product.ms = product_ms;
+  for (const DetectedLine& l : plain.lines) f.our_segments.push_back({l.x1, l.y1, l.x2, l.y2});
+  f.product.segments = f.our_segments;
+  f.candidates = m.candidates.candidates(image, m.detector.edges(), m.no_model.edge_gain, plain.lines, m.no_model.horizon);
+  for (const HorizonEstimate& c : f.candidates) {
+    f.candidate_passes.push_back(has_horizon && eval::passes(eval::horizonError(c.line, truth, f.width, f.height), f.height));
+  }
+  f.baselines = baselines(image, m, all_baselines);
+  return f;
+}
+
+// Our decision on a frame with `model`: its most probable candidate, found from min_confidence.
+Detection decide(const FrameData& f, const HorizonModel& model, double min_confidence, double ms) {
+  Detection d;
+  d.ms = ms;
+  d.segments = f.our_segments;
+  double best = -1;
+  for (const HorizonEstimate& c : f.candidates) {
+    const double p = model.probability(c.features);
+    if (p <= best) continue;
+    best = p;
+    d.horizon = c.line;
+    d.found = p >= min_confidence;
+  }
+  return d;
+}
+
+// The model fitted on the candidates of the frames `use` accepts, each class weighing as much
+// as the other.
+template <typename Use>
+HorizonModel fitOn(const std::vector<FrameData>& frames, Use use) {
+  std::vector<HorizonFeatures> x;
+  std::vector<int> y;
+  for (const FrameData& f : frames) {
+    if (!use(f)) continue;
+    for (size_t i = 0; i < f.candidates.size(); ++i) {
+      x.push_back(f.candidates[i].features);
+      y.push_back(f.candidate_passes[i]);
+    }
+  }
+  const double positives = static_cast<double>(std::count(y.begin(), y.end(), 1));
+  const double negatives = static_cast<double>(y.size()) - positives;
+  std::vector<double> w(y.size());
+  for (size_t i = 0; i < y.size(); ++i) w[i] = 0.5 * y.size() / (y[i] ? std::max(positives, 1.0) : std::max(negatives, 1.0));
+  return fitHorizonModel(x, y, w, kL2);
+}
+
+// The decision threshold for the frames `use` accepts: each group scored by a model fitted
+// without it (nested inside any outer hold-out), the threshold with the fewest frame errors,
+// horizon frames and frames without one weighing alike (ties: the one nearest 0.5).
+template <typename Use>
+double chooseThreshold(const std::vector<FrameData>& frames, Use use) {
+  std::set<std::string> groups;
+  for (const FrameData& f : frames) {
+    if (use(f)) groups.insert(f.group);
+  }
+  std::vector<std::pair<const FrameData*, double>> scored;  // frame, its best candidate's probability
+  std::vector<int> best_passes;
+  for (const std::string& g : groups) {
+    const HorizonModel model = fitOn(frames, [&](const FrameData& f) { return use(f) && f.group != g; });
+    for (const FrameData& f : frames) {
+      if (!use(f) || f.group != g) continue;
+      double best = 0;
+      int pass = 0;
+      for (size_t i = 0; i < f.candidates.size(); ++i) {
+        const double p = model.probability(f.candidates[i].features);
+        if (p > best) best = p, pass = f.candidate_passes[i];
+      }
+      scored.push_back({&f, best});
+      best_passes.push_back(pass);
+    }
+  }
+  double with = 0, without = 0;
+  for (const auto& s : scored) (s.first->has_horizon ? with : without) += 1;
+  double best_t = 0.5, best_cost = INFINITY;
+  for (int k = 1; k < 20; ++k) {
+    const double t = 0.05 * k;
+    double missed = 0, false_found = 0;
+    for (size_t i = 0; i < scored.size(); ++i) {
+      const bool found = scored[i].second >= t;
+      if (scored[i].first->has_horizon) missed += !(found && best_passes[i]);
+      else false_found += found;
+    }
+    const double cost = missed / std::max(with, 1.0) + false_found / std::max(without, 1.0);
+    if (cost < best_cost - 1e-12 || (std::fabs(cost - best_cost) <= 1e-12 && std::fabs(t - 0.5) < std::fabs(best_t - 0.5))) {
+      best_cost = cost;
+      best_t = t;
+    }
+  }
+  return best_t;
+}
+
+// The model for the frames outside `held_out` ("": every frame), its decision threshold moved
+// into the bias so that it decides at probability 0.5.
+HorizonModel fitWithout(const std::vector<FrameData>& frames, const std::string& held_out) {
+  auto use = [&](const FrameData& f) { return held_out.empty() || f.group != held_out; };
+  HorizonModel model = fitOn(frames, use);
+  const double t = chooseThreshold(frames, use);
+  model.bias -= std::log(t / (1 - t));
+  return model;
+}
+
+std::map<std::string, HorizonModel> heldOutModels(const std::vector<FrameData>& frames) {
+  std::map<std::string, HorizonModel> models;
+  for (const FrameData& f : frames) {
+    if (!models.count(f.group)) models[f.group] = fitWithout(frames, f.group);
+  }
+  return models;
+}
+
 }  // namespace
 
+#include "eval_horizon_report.h"
+
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::cerr << "usage: rle_vision_eval_horizon DIR [--params FILE] [--json OUT]\n";
-    return 2;
-  }
-  const std::string dir = argv[1];
-  std::string params_file, json_path;
-  for (int i = 2; i + 1 < argc; i += 2) {
-    const std::string arg = argv[i];
-    (arg == "--params" ? params_file : json_path) = argv[i + 1];
-  }
+  EvalArguments args;
+  if (!parseArguments(argc, argv, &args)) return 2;
   bench::pinToOneCpu();
   cv::setNumThreads(1);
-  std::vector<HorizonLabel> labels;
-  LandmarkOptions options;
-  try {
-    labels = readLabels(dir + "/label.csv");
-    if (!params_file.empty()) options = loadLandmarkParams(params_file);
-  } catch (const std::exception& e) {
-    std::cerr << "rle_vision_eval_horizon: " << e.what() << "\n";
+  Methods methods;
+  std::vector<HorizonFrame> sources;
+  if (!loadSetup(args, &methods, &sources)) return 2;
+  std::vector<FrameData> frames = analyseAll(sources, args, methods);
+  if (frames.empty()) {
+    std::cerr << "rle_vision_eval_horizon: no frames could be read\n";
     return 2;
   }
-  LandmarkDetector detector;
-  const cv::Ptr<cv::ximgproc::FastLineDetector> fld = cv::ximgproc::createFastLineDetector();
-  const cv::Ptr<cv::LineSegmentDetector> lsd = cv::createLineSegmentDetector(cv::LSD_REFINE_STD);
-  std::vector<MethodScore> methods(4);
-  methods[0].name = "ours (rle_vision, defaults)";
-  methods[1].name = "FastLineDetector (longest level)";
-  methods[2].name = "LSD (longest level)";
-  methods[3].name = "HoughLinesP (longest level)";
-  int missing = 0;
-  for (const HorizonLabel& label : labels) {
-    cv::Mat image = cv::imread(dir + "/images/" + label.file, cv::IMREAD_COLOR);
-    if (image.empty()) image = cv::imread(dir + "/" + label.file, cv::IMREAD_COLOR);
-    if (image.empty()) {
-      ++missing;
-      continue;
-    }
-    LandmarkResult result;
-    double ms = timeMs([&] { detector.detectInImage(image, options, &result); });
-    Detection ours;
-    ours.found = result.horizon.found;
-    ours.horizon = result.horizon.line;
-    ours.confidence = result.horizon.confidence;
-    for (const DetectedLine& l : result.lines) ours.segments.push_back({l.x1, l.y1, l.x2, l.y2});
-    score(&methods[0], label, ours, image.cols, image.rows, ms);
-
-    cv::Mat gray;
-    std::vector<cv::Vec4f> fld_lines, lsd_lines;
-    ms = timeMs([&] {
-      cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
-      fld->detect(gray, fld_lines);
-    });
-    score(&methods[1], label, longestLevelSegment(toSegments(fld_lines)), image.cols, image.rows, ms);
-    ms = timeMs([&] {
-      cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
-      lsd->detect(gray, lsd_lines);
-    });
-    score(&methods[2], label, longestLevelSegment(toSegments(lsd_lines)), image.cols, image.rows, ms);
-    std::vector<cv::Vec4i> hough_lines;
-    ms = timeMs([&] {
-      cv::Mat blurred, edges;
-      cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
-      cv::GaussianBlur(gray, blurred, cv::Size(5, 5), 1.5);
-      cv::Canny(blurred, edges, 30, 90);
-      cv::HoughLinesP(edges, hough_lines, 1, CV_PI / 180, 40, 40, 5);
-    });
-    score(&methods[3], label, longestLevelSegment(toSegments(hough_lines)), image.cols, image.rows, ms);
-  }
-  std::printf("rle_vision eval (horizon): %zu labelled frames in %s%s; one thread pinned to one CPU\n", labels.size(),
-              dir.c_str(), missing ? cv::format(" (%d images missing)", missing).c_str() : "");
-  std::printf("pass: angle error < %.0f deg and Hesse distance (from the image centre) error < %.0f%% of H; "
-              "errors over the frames with a horizon reported; on hor.: a segment >= %.0f px within %.0f deg and "
-              "%.0f%% H of the true horizon\n",
-              eval::kPassAngleDeg, 100 * eval::kPassDistanceShareOfHeight, eval::kOnHorizonMinLengthPx,
-              eval::kOnHorizonAngleDeg, 100 * eval::kOnHorizonDistanceShareOfHeight);
-  report(methods, dir, json_path);
-  return missing == static_cast<int>(labels.size()) ? 2 : 0;
+  const std::map<std::string, HorizonModel> held_out = heldOutModels(frames);
+  const Results results = scoreAll(frames, held_out, methods);
+  const std::vector<RobustnessRow> robustness = runRobustness(sources, held_out, methods);
+  report(args, frames, results, robustness);
+  if (!args.train_output.empty()) writeModel(args, frames);
+  return 0;
 }

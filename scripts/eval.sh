@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # make eval: accuracy on real labelled frames, ours against OpenCV in one run, one thread.
-#  - Horizon: EVAL_DIR (default ../shared/data/uav_horizon when it exists), label.csv; writes
-#    eval_horizon.json.
+#  - Horizon: the labelled UAV folders (EVAL_DIR, default ../shared/data/uav_horizon and
+#    ../shared/data/uav_horizon_clouds where they exist), frames without a horizon
+#    (EVAL_NEGATIVES_DIR, default ../shared/data/robocup_msl) and the simulator's scenes; every
+#    flight, date or scene scored with the horizon model fitted without it (leave one group out);
+#    the robustness suite; writes eval_horizon.json.
 #  - Balls: EVAL_BALLS_DIR (default ../shared/data/robocup_msl/20220716 when it exists), folders
 #    of images with YOLO labels (ball class EVAL_BALL_CLASS, default 0): the class is calibrated
 #    on the first folder (sorted) and scored on the others; writes eval_balls.json.
@@ -10,15 +13,22 @@
 # so far: a regression fails; see scripts/check_eval_floor.py).
 set -euo pipefail
 source "$(dirname "$0")/env.sh"
-horizon_dir="${EVAL_DIR:-$ROOT/../shared/data/uav_horizon}"
+horizon_dirs=()
+for dir in ${EVAL_DIR:-$ROOT/../shared/data/uav_horizon $ROOT/../shared/data/uav_horizon_clouds}; do
+  [[ -f "$dir/label.csv" ]] && horizon_dirs+=("$dir")
+done
+negatives_dir="${EVAL_NEGATIVES_DIR:-$ROOT/../shared/data/robocup_msl}"
 balls_dir="${EVAL_BALLS_DIR:-$ROOT/../shared/data/robocup_msl/20220716}"
 cd "$WS" && catkin_make -DRLE_VISION_BUILD_BENCHMARKS=ON -j"${JOBS:-2}" rle_vision_eval_horizon rle_vision_eval_balls >/dev/null
 checked=()
-if [[ -f "$horizon_dir/label.csv" ]]; then
-  "$WS/devel/lib/rle_vision/rle_vision_eval_horizon" "$horizon_dir" --json "$RESULTS_DIR/eval_horizon.json"
+if (( ${#horizon_dirs[@]} )); then
+  negatives=()
+  [[ -d "$negatives_dir" ]] && negatives=(--negatives "$negatives_dir")
+  "$WS/devel/lib/rle_vision/rle_vision_eval_horizon" "${horizon_dirs[@]}" "${negatives[@]}" --sim-frames 40 \
+    --json "$RESULTS_DIR/eval_horizon.json"
   if [[ -z "${EVAL_DIR:-}" ]]; then checked+=(--horizon "$RESULTS_DIR/eval_horizon.json"); fi
 else
-  echo "[eval] no labelled horizon frames at $horizon_dir (label.csv): horizon not evaluated (EVAL_DIR=... for another folder)"
+  echo "[eval] no labelled horizon frames (label.csv) in ${EVAL_DIR:-../shared/data/uav_horizon*}: horizon not evaluated (EVAL_DIR=... for other folders)"
 fi
 mapfile -t folders < <(find "$balls_dir" -mindepth 1 -maxdepth 1 -type d 2>/dev/null | sort)
 if (( ${#folders[@]} >= 2 )); then

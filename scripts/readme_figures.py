@@ -126,19 +126,41 @@ def landmark():
 
 def eval_horizon():
     d = load('eval_horizon')
-    names = {'ours (rle_vision, defaults)': 'ours (defaults)', 'FastLineDetector (longest level)': 'FastLineDetector',
-             'LSD (longest level)': 'LSD', 'HoughLinesP (longest level)': 'Gauss + Canny + HoughLinesP'}
+    names = {'ours, model held out (leave one group out)': 'ours, each flight held out from the model',
+             'ours, shipped model (in sample)': 'ours, the shipped model (in sample)',
+             'ours, evidence product (no model)': 'ours, evidence product (before the model)',
+             'FastLineDetector (longest level)': 'FastLineDetector', 'LSD (longest level)': 'LSD',
+             'HoughLinesP (longest level)': 'Gauss + Canny + HoughLinesP'}
+    sets = [k for k in d['datasets'] if k.startswith('uav')]
     rows = []
     for key, m in d['methods'].items():
         name = names.get(key, key)
         passed = '%.1f%%' % m['pass_pct']
-        rows.append([name, '**%s**' % passed if name.startswith('ours') else passed, '%.1f%%' % m['found_pct'],
+        rows.append([name, '**%s**' % passed if 'held out' in name else passed] +
+                    ['%.1f%%' % d['datasets'][s][key]['pass_pct'] for s in sets] +
+                    ['%s %.1f%%' % (m['worst_group'], m['worst_group_pass_pct']), '%.1f%%' % m['found_pct'],
                      '%.2f° / %.2f°' % (m['angle_error_mean_deg'], m['angle_error_median_deg']),
-                     '%.1f px' % m['distance_error_mean_px'], '%.1f%%' % m['on_horizon_pct'],
-                     '%.1f%%' % m['confident_pass_pct'], '%.2f' % m['ms_per_frame']])
-    return (table(['method', 'pass', 'found', 'angle error mean / median', 'distance error mean', 'on horizon',
-                   'pass when confidence ≥ 0.5', 'ms/frame'], rows) + '\n\n' +
-            provenance('make eval', 'eval_horizon', d) + ', %d frames' % d['frames'])
+                     '%.1f px' % m['distance_error_mean_px'], '%.1f%%' % m['on_horizon_pct'], '%.2f' % m['ms_per_frame']])
+    return (table(['method', 'pass, all %d' % d['frames']] + ['pass, `%s`' % s for s in sets] +
+                  ['worst flight', 'found', 'angle error mean / median', 'distance error mean', 'on horizon',
+                   'ms/frame'], rows) + '\n\n' + provenance('make eval', 'eval_horizon', d))
+
+
+def eval_no_horizon():
+    d = load('eval_horizon')
+    sets = [k for k in d['datasets'] if not k.startswith('uav') and 'scene_default' not in k]  # no horizon in view
+    rows = []
+    for key in d['methods']:
+        rows.append([key] + ['%.1f%%' % d['datasets'][s][key]['pass_pct'] for s in sets])
+    return (table(['method'] + ['no horizon reported, `%s` (%d frames)' % (s, d['datasets'][s][key]['frames'])
+                                for s in sets], rows) + '\n\n' + provenance('make eval', 'eval_horizon', d))
+
+
+def eval_robustness():
+    d = load('eval_horizon')
+    rows = [[name, '**%.1f%%**' % r['pass_pct'], '%.1f%%' % r['fld_pass_pct']] for name, r in d['robustness'].items()]
+    return (table(['perturbation (all labelled frames)', 'ours, each flight held out', 'FastLineDetector'], rows) +
+            '\n\n' + provenance('make eval', 'eval_horizon', d))
 
 
 def eval_balls():
@@ -192,7 +214,8 @@ def latency():
             provenance('make bench-latency', 'latency', d))
 
 
-WRITERS = {f.__name__: f for f in (tracker, tracker_noise, tracker_bounded, landmark, eval_horizon, eval_balls,
+WRITERS = {f.__name__: f for f in (tracker, tracker_noise, tracker_bounded, landmark, eval_horizon, eval_no_horizon,
+                                   eval_robustness, eval_balls,
                                    eval_balls_bound, latency)}
 
 

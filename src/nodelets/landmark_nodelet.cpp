@@ -24,6 +24,7 @@
 #include "color_range_conversions.h"
 #include "error_throttle.h"
 #include "node_settings.h"
+#include "rle_vision/io/horizon_model_file.h"
 #include "image_conversions.h"
 #include "landmark_conversions.h"
 #include "landmark_markers.h"
@@ -89,6 +90,7 @@ class LandmarkNodelet : public nodelet::Nodelet {
   image_transport::Publisher pub_debug_;
   std::mutex connect_mutex_;
   LandmarkSettings startup_;  // read once at start
+  HorizonModel horizon_model_;  // from startup_.horizon_model_file
 
   std::mutex config_mutex_;
   Settings settings_;
@@ -133,6 +135,13 @@ void LandmarkNodelet::readStartupSettings(const ros::NodeHandle& pnh) {
   readSetting(pnh, #key, &startup_.key, min, max, &problems);
 #include "rle_vision/params/landmark_params.def"
   for (const std::string& problem : problems) NODELET_WARN("%s", problem.c_str());
+  try {
+    horizon_model_ = horizonModelFromSetting(startup_.horizon_model_file);
+    NODELET_INFO("horizon weighed by %s", horizon_model_.valid ? "the horizon model" : "the product of the region evidence");
+  } catch (const std::exception& e) {
+    NODELET_ERROR("cannot read the horizon model: %s. Weighing horizons by the product of the region evidence; set "
+                  "~horizon_model_file to a model made by make train-horizon, or to none", e.what());
+  }
 }
 
 void LandmarkNodelet::onInit() {
@@ -203,6 +212,7 @@ void LandmarkNodelet::advertiseAndSubscribe(ros::NodeHandle& nh, ros::NodeHandle
 
 void LandmarkNodelet::reconfigureCb(LandmarkConfig& config, uint32_t /*level*/) {
   Settings candidate{optionsFromConfig(config), learningFromConfig(config), learningLoopFromConfig(config)};
+  candidate.landmark.horizon.model = horizon_model_;
   std::string problem = validateLandmarkOptions(candidate.landmark);
   if (problem.empty()) problem = validateLearningOptions(candidate.learning);
   if (problem.empty()) problem = validateLearningLoopOptions(candidate.loop);

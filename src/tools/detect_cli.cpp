@@ -2,7 +2,7 @@
 // Prints one JSON object per image on stdout; unreadable files give an error entry and a
 // non-zero exit status at the end.
 //
-//   rle_vision_detect [--colors FILE] [--params FILE] [--annotate DIR] [--sequence [--fps HZ]] IMAGE...
+//   rle_vision_detect [--colors FILE] [--params FILE] [--horizon-model FILE] [--annotate DIR] [--sequence [--fps HZ]] IMAGE...
 //   rle_vision_detect --print-params
 #include <cstdlib>
 #include <cstring>
@@ -19,6 +19,7 @@
 #include "rle_vision/io/color_config.h"
 #include "rle_vision/io/data_files.h"
 #include "rle_vision/landmark/landmark_detector.h"
+#include "rle_vision/io/horizon_model_file.h"
 #include "rle_vision/io/landmark_params_file.h"
 #include "rle_vision/pipeline/overlay.h"
 #include "rle_vision/tracking/color_tracker.h"
@@ -28,10 +29,12 @@ namespace {
 using namespace rle_vision;
 
 const char* kUsage =
-    "usage: rle_vision_detect [--colors FILE] [--params FILE] [--annotate DIR] [--sequence [--fps HZ]] IMAGE...\n"
+    "usage: rle_vision_detect [--colors FILE] [--params FILE] [--horizon-model FILE] [--annotate DIR] [--sequence [--fps HZ]]\n"
+    "                         IMAGE...\n"
     "       rle_vision_detect --print-params\n"
     "  --colors FILE    colour classes: colors.yaml or CMVision colors.txt (default: the package's config/colors.yaml)\n"
     "  --params FILE    landmark parameters (default: their defaults; see --print-params)\n"
+    "  --horizon-model FILE  the horizon model (default: the package's config/horizon_model.yaml; none: no model)\n"
     "  --annotate DIR   also write DIR/<image name>.png with blobs, lines and the horizon drawn (DIR is made)\n"
     "  --sequence       the images, in the order given, are one camera stream at --fps (default 30):\n"
     "                   blobs are tracked across them and colour ranges learned on one frame are used on\n"
@@ -42,7 +45,7 @@ const char* kUsage =
 
 struct Arguments {
   std::string colors_file = packageDataFile("config/colors.yaml");
-  std::string params_file, annotate_dir;
+  std::string params_file, annotate_dir, horizon_model;
   bool print_params = false, sequence = false, fps_given = false;
   double fps = 30;
   std::vector<std::string> images;
@@ -53,13 +56,16 @@ bool parseArguments(int argc, char** argv, Arguments* args, int* exit_status) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
-    if (arg == "--colors" || arg == "--params" || arg == "--annotate") {
+    if (arg == "--colors" || arg == "--params" || arg == "--annotate" || arg == "--horizon-model") {
       if (!has_value) {
         std::cerr << "rle_vision_detect: " << arg << " needs a value\n" << kUsage;
         *exit_status = 2;
         return false;
       }
-      (arg == "--colors" ? args->colors_file : arg == "--params" ? args->params_file : args->annotate_dir) = argv[++i];
+      (arg == "--colors" ? args->colors_file
+       : arg == "--params" ? args->params_file
+       : arg == "--annotate" ? args->annotate_dir
+                             : args->horizon_model) = argv[++i];
     } else if (arg == "--fps") {
       char* end = nullptr;
       args->fps = has_value ? std::strtod(argv[++i], &end) : 0;
@@ -224,7 +230,8 @@ int main(int argc, char** argv) {
       throw ConfigError("config/colors.yaml not found (installed share/rle_vision, the source tree or "
                         "$RLE_VISION_DATA_DIR): give --colors FILE");
     }
-    const LandmarkOptions options = args.params_file.empty() ? LandmarkOptions() : loadLandmarkParams(args.params_file);
+    LandmarkOptions options = args.params_file.empty() ? LandmarkOptions() : loadLandmarkParams(args.params_file);
+    options.horizon.model = horizonModelFromSetting(args.horizon_model);
     if (args.sequence) return runSequence(args, loadColorClasses(args.colors_file), options);
     detector = std::make_unique<ImageDetector>(loadColorClasses(args.colors_file), options);
   } catch (const std::exception& e) {

@@ -16,13 +16,19 @@
 #include <opencv2/core.hpp>
 
 #include "rle_vision/landmark/detected_line.h"
+#include "rle_vision/landmark/horizon_model.h"
 
 namespace rle_vision {
 
 // The parameters are the HORIZON group of landmark_params.def, with their defaults and meanings.
+// `model`, when valid, weighs every candidate line (the region splits and the merged Hough
+// lines) by the probability it gives, and the most probable is the horizon when that reaches
+// min_confidence; without one, the candidates are weighed by the product of the region evidence
+// in order and the first convincing one wins.
 struct HorizonOptions {
 #define RLE_HORIZON_PARAM(key, member, type, default_value, min, max, description) type member = default_value;
 #include "rle_vision/params/landmark_params.def"
+  HorizonModel model;
 };
 
 struct HorizonEstimate {
@@ -41,6 +47,7 @@ struct HorizonEstimate {
   double ground_textured = 0;  // share of pixels below above the noise floor
   uint32_t votes = 0, support = 0;  // Hough votes and support of the pieces, or edge points
   int pieces = 0;          // Hough lines merged into it
+  HorizonFeatures features{};  // with a colour image: the evidence as the model reads it
 };
 
 // From the lines alone: merged collinear pieces, robustly refitted; confidence = coverage,
@@ -60,6 +67,11 @@ class HorizonDetector {
   // lines found in them.
   HorizonEstimate detect(const cv::Mat& bgr, const cv::Mat& edges, double edge_gain,
                          const std::vector<DetectedLine>& lines, const HorizonOptions& options);
+
+  // Every candidate line weighed (the region splits, then the merged Hough lines), with its
+  // features, confidence and found flag as detect() would give them: what a model learns from.
+  std::vector<HorizonEstimate> candidates(const cv::Mat& bgr, const cv::Mat& edges, double edge_gain,
+                                          const std::vector<DetectedLine>& lines, const HorizonOptions& options);
 
  private:
   struct Impl;

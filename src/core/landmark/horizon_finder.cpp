@@ -138,11 +138,20 @@ struct HorizonDetector::Impl {
 
   HorizonEstimate detect(const cv::Mat& bgr, const cv::Mat& edges, double edge_gain,
                          const std::vector<DetectedLine>& lines, const HorizonOptions& o);
+  std::vector<HorizonEstimate> candidates(const cv::Mat& bgr, const cv::Mat& edges, double edge_gain,
+                                          const std::vector<DetectedLine>& lines, const HorizonOptions& o);
+  // Builds the grids; false when the frame is not one the region search can split.
+  bool prepare(const cv::Mat& bgr, const cv::Mat& edges, const HorizonOptions& o);
+  std::vector<horizon::Hypothesis> regionHypotheses(int width, int height, const horizon::RefineOptions& refine,
+                                                    const HorizonOptions& o) const;
+  static std::vector<horizon::Hypothesis> houghHypotheses(const std::vector<DetectedLine>& lines, int width,
+                                                          int height, const HorizonOptions& o);
   // Refines the hypotheses in order into *best; true when one is convincing.
   bool weigh(const cv::Mat& edges, const std::vector<horizon::Hypothesis>& hypotheses,
              const horizon::RefineOptions& refine, const HorizonOptions& o, horizon::RefinedHorizon* best);
   static horizon::RefineOptions refineOptions(const HorizonOptions& o, double edge_gain);
   static HorizonEstimate estimate(const horizon::RefinedHorizon& r, const HorizonOptions& o, int width, int height);
+  static HorizonFeatures features(const horizon::RefinedHorizon& r, bool from_regions, const HorizonOptions& o);
 };
 
 HorizonDetector::HorizonDetector() : impl_(std::make_unique<Impl>()) {}
@@ -155,36 +164,119 @@ HorizonEstimate HorizonDetector::detect(const cv::Mat& bgr, const cv::Mat& edges
   return impl_->detect(bgr, edges, edge_gain, lines, o);
 }
 
-HorizonEstimate HorizonDetector::Impl::detect(const cv::Mat& bgr, const cv::Mat& edges, double edge_gain,
-                                              const std::vector<DetectedLine>& lines, const HorizonOptions& o) {
+std::vector<HorizonEstimate> HorizonDetector::candidates(const cv::Mat& bgr, const cv::Mat& edges, double edge_gain,
+                                                         const std::vector<DetectedLine>& lines,
+                                                         const HorizonOptions& o) {
+  return impl_->candidates(bgr, edges, edge_gain, lines, o);
+}
+
+bool HorizonDetector::Impl::prepare(const cv::Mat& bgr, const cv::Mat& edges, const HorizonOptions& o) {
   const int width = bgr.cols, height = bgr.rows;
-  if (bgr.type() != CV_8UC3 || edges.type() != CV_8UC1 || edges.size() != bgr.size()) return HorizonEstimate();
+  if (bgr.type() != CV_8UC3 || edges.type() != CV_8UC1 || edges.size() != bgr.size()) return false;
   const int cell = std::clamp(static_cast<int>(std::lround(std::min(width, height) / static_cast<double>(o.grid_cells))), 1,
                               horizon::kMaxCell);
-  if (width / cell < 4 || height / cell < 4) return HorizonEstimate();  // too small for the region grids
+  if (width / cell < 4 || height / cell < 4) return false;  // too small for the region grids
   fine.build(bgr, cell);
-  const horizon::RefineOptions refine = refineOptions(o, edge_gain);
-  // The splits into two regions of distinct colours first (hazy or broken horizons)...
   coarse.buildHalf(fine);
+  return true;
+}
+
+std::vector<horizon::Hypothesis> HorizonDetector::Impl::regionHypotheses(int width, int height,
+                                                                        const horizon::RefineOptions& refine,
+                                                                        const HorizonOptions& o) const {
   horizon::SearchOptions search;
   search.max_angle_deg = o.max_angle_deg;
   search.hypotheses = o.hypotheses;
   search.noise_variance = refine.noise_variance;
   search.min_fraction = kMinSideFraction;
-  horizon::RefinedHorizon best;
-  if (weigh(edges, horizon::searchSplits(fine, coarse, width, height, search), refine, o, &best)) {
-    return estimate(best, o, width, height);
-  }
-  // ... then long straight edges across the image (merged Hough pieces): where objects in view
-  // outweigh the sky in the colour statistics.
+  return horizon::searchSplits(fine, coarse, width, height, search);
+}
+
+std::vector<horizon::Hypothesis> HorizonDetector::Impl::houghHypotheses(const std::vector<DetectedLine>& lines,
+                                                                       int width, int height,
+                                                                       const HorizonOptions& o) {
   std::vector<horizon::Hypothesis> candidates;
   for (const HorizonEstimate& group : mergedGroups(lines, width, height, o)) {
     if (static_cast<int>(candidates.size()) >= o.hypotheses) break;
     const horizon::SplitLine l = horizon::SplitLine::fromImageLine(group.line);
     candidates.push_back({l.angle_deg, l.centreDistance(width, height), 0});
   }
-  weigh(edges, candidates, refine, o, &best);
+  return candidates;
+}
+
+HorizonEstimate HorizonDetector::Impl::detect(const cv::Mat& bgr, const cv::Mat& edges, double edge_gain,
+                                              const std::vector<DetectedLine>& lines, const HorizonOptions& o) {
+  if (o.model.valid) {
+    // Every candidate weighed by the model: the most probable one.
+    HorizonEstimate best;
+    bool any = false;
+    for (const HorizonEstimate& h : candidates(bgr, edges, edge_gain, lines, o)) {
+      if (!any || h.confidence > best.confidence) best = h;
+      any = true;
+    }
+    return best;
+  }
+  if (!prepare(bgr, edges, o)) return HorizonEstimate();
+  const int width = bgr.cols, height = bgr.rows;
+  const horizon::RefineOptions refine = refineOptions(o, edge_gain);
+  // The splits into two regions of distinct colours first (hazy or broken horizons)...
+  horizon::RefinedHorizon best;
+  if (weigh(edges, regionHypotheses(width, height, refine, o), refine, o, &best)) {
+    return estimate(best, o, width, height);
+  }
+  // ... then long straight edges across the image (merged Hough pieces): where objects in view
+  // outweigh the sky in the colour statistics.
+  weigh(edges, houghHypotheses(lines, width, height, o), refine, o, &best);
   return estimate(best, o, width, height);
+}
+
+std::vector<HorizonEstimate> HorizonDetector::Impl::candidates(const cv::Mat& bgr, const cv::Mat& edges,
+                                                               double edge_gain, const std::vector<DetectedLine>& lines,
+                                                               const HorizonOptions& o) {
+  std::vector<HorizonEstimate> out;
+  if (!prepare(bgr, edges, o)) return out;
+  const int width = bgr.cols, height = bgr.rows;
+  const horizon::RefineOptions refine = refineOptions(o, edge_gain);
+  for (const bool from_regions : {true, false}) {
+    const std::vector<horizon::Hypothesis> hypotheses =
+        from_regions ? regionHypotheses(width, height, refine, o) : houghHypotheses(lines, width, height, o);
+    for (const horizon::Hypothesis& hypothesis : hypotheses) {
+      const horizon::RefinedHorizon r = refiner.refine(edges, fine, hypothesis, refine);
+      // The fit may turn a line past the steepest horizon the user allows: then it is not one.
+      if (std::fabs(r.line.angle_deg) > o.max_angle_deg) continue;
+      HorizonEstimate h = estimate(r, o, width, height);
+      h.features = features(r, from_regions, o);
+      if (o.model.valid) {
+        h.confidence = o.model.probability(h.features);
+        h.found = h.confidence >= o.min_confidence;
+      }
+      out.push_back(h);
+    }
+  }
+  return out;
+}
+
+HorizonFeatures HorizonDetector::Impl::features(const horizon::RefinedHorizon& r, bool from_regions,
+                                                const HorizonOptions& o) {
+  // The evidence as log-probabilities (every part in (0, 1], floored at 0.01): a model that
+  // weighs them positively is a weighted product of the parts, which a strong part cannot
+  // make up for a missing one in (a field line is a strong edge, but no sky above ground).
+  auto log_part = [](double q) { return std::log(std::clamp(q, 0.01, 1.0)); };
+  auto saturating = [](double ratio) { return ratio / (1 + ratio); };  // 0..1 for a ratio 0..inf
+  HorizonFeatures f{};
+  f[kSeparation] = log_part(r.evidence.separation);
+  f[kSkyBrighter] = log_part(r.evidence.sky_brighter);
+  f[kGroundRougher] = log_part(r.evidence.ground_rougher);
+  f[kGroundTextured] = log_part(r.evidence.ground_textured);
+  f[kCoverage] = log_part(r.scanlines > 0 ? static_cast<double>(r.inliers) / r.scanlines : 0);
+  f[kFitSpread] = log_part(o.inlier_px / (o.inlier_px + r.rms));
+  f[kEdgeContrast] = log_part(saturating((r.edge_at_line + 1) / (r.sky_edge_level + 1)));
+  f[kLocalStep] = log_part(saturating(r.evidence.local_step));
+  const double sky = std::clamp(r.evidence.sky_share, 0.01, 0.99);
+  f[kSkyShare] = std::log(sky / (1 - sky));
+  f[kTilt] = std::fabs(r.line.angle_deg) / 90;
+  f[kFromRegions] = from_regions ? 1 : 0;
+  return f;
 }
 
 horizon::RefineOptions HorizonDetector::Impl::refineOptions(const HorizonOptions& o, double edge_gain) {

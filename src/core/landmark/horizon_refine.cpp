@@ -91,7 +91,8 @@ double HorizonRefiner::threshold(const cv::Mat& edges, const SplitLine& line, do
       }
     });
   }
-  double t = std::max(percentileOf(histogram, samples, o.sky_percentile), o.edge_floor);
+  sky_edge_level_ = percentileOf(histogram, samples, o.sky_percentile);
+  double t = std::max(sky_edge_level_, o.edge_floor);
   // The scanlines across the band (columns, rows for steep lines), and the typical maximum.
   const bool flat = std::fabs(line.ny) >= std::fabs(line.nx);
   const int count = flat ? edges.cols : edges.rows, length = flat ? edges.rows : edges.cols;
@@ -234,8 +235,59 @@ RefinedHorizon HorizonRefiner::refine(const cv::Mat& edges, const RegionGrid& fi
     out.t_max = std::max(out.t_max, t);
   }
   out.rms = out.inliers > 0 ? std::sqrt(squares / out.inliers) : 0;
+  out.sky_edge_level = std::max(sky_edge_level_, o.edge_floor);
+  out.edge_at_line = medianEdgeAtInliers(edges, out.line, o.inlier_px);
   out.evidence = evidence(edges, fine, out.line, o);
+  out.evidence.local_step = localStep(fine, out.line, std::sqrt(o.noise_variance));
   return out;
+}
+
+double HorizonRefiner::medianEdgeAtInliers(const cv::Mat& edges, const SplitLine& line, double inlier_px) {
+  steps_.clear();
+  for (size_t i = 0; i < px_.size(); ++i) {
+    if (std::fabs(line.signedDistance(px_[i], py_[i])) > inlier_px) continue;
+    const int x = std::clamp(static_cast<int>(std::lround(px_[i])), 0, edges.cols - 1);
+    const int y = std::clamp(static_cast<int>(std::lround(py_[i])), 0, edges.rows - 1);
+    steps_.push_back(edges.ptr<uint8_t>(y)[x]);
+  }
+  if (steps_.empty()) return 0;
+  std::nth_element(steps_.begin(), steps_.begin() + steps_.size() / 2, steps_.end());
+  return steps_[steps_.size() / 2];
+}
+
+double HorizonRefiner::localStep(const RegionGrid& fine, const SplitLine& line, double noise) {
+  // Along the line in cell units: per cell column (row for steep lines), the cells 1.5 and 3.5
+  // cells from the line on each side (nearest cells).
+  const int s = fine.cell();
+  const bool flat = std::fabs(line.ny) >= std::fabs(line.nx);
+  const int count = flat ? fine.cols() : fine.rows(), length = flat ? fine.rows() : fine.cols();
+  const double along = flat ? line.ny : line.nx, across = flat ? line.nx : line.ny;
+  const double sky_direction = along > 0 ? -1 : 1;  // moving this way along the scan goes skywards
+  auto distance = [](const float* a, const float* b) {
+    return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+  };
+  steps_.clear();
+  spreads_.clear();
+  for (int f = 0; f < count; ++f) {
+    const double centre_px = (line.rho - across * (f * s + 0.5 * (s - 1))) / along;  // where the line crosses
+    const double centre = (centre_px - 0.5 * (s - 1)) / s;                             // in cells
+    int at[4];
+    const double offsets[4] = {3.5, 1.5, -1.5, -3.5};  // sky far, sky near, ground near, ground far
+    bool inside = true;
+    for (int k = 0; k < 4; ++k) {
+      at[k] = static_cast<int>(std::lround(centre + sky_direction * offsets[k] / std::fabs(along)));
+      inside = inside && at[k] >= 0 && at[k] < length;
+    }
+    if (!inside) continue;
+    auto colour = [&](int k) { return flat ? fine.colour(at[k], f) : fine.colour(f, at[k]); };
+    steps_.push_back(distance(colour(1), colour(2)));
+    spreads_.push_back(distance(colour(0), colour(1)));
+    spreads_.push_back(distance(colour(2), colour(3)));
+  }
+  if (steps_.empty()) return 0;
+  std::nth_element(steps_.begin(), steps_.begin() + steps_.size() / 2, steps_.end());
+  std::nth_element(spreads_.begin(), spreads_.begin() + spreads_.size() / 2, spreads_.end());
+  return steps_[steps_.size() / 2] / (spreads_[spreads_.size() / 2] + noise);
 }
 
 Evidence HorizonRefiner::evidence(const cv::Mat& edges, const RegionGrid& fine, const SplitLine& line,
@@ -245,6 +297,7 @@ Evidence HorizonRefiner::evidence(const cv::Mat& edges, const RegionGrid& fine, 
   fine.skySideSums(line, sky_sums);
   for (int k = 0; k < kMoments; ++k) ground_sums[k] = fine.total()[k] - sky_sums[k];
   const SideStats sky = sideStats(sky_sums, o.noise_variance), ground = sideStats(ground_sums, o.noise_variance);
+  e.sky_share = sky.n / std::max(fine.total()[0], 1e-9);
   if (std::min(sky.n, ground.n) < 4) return e;
   e.separation = 1 - std::exp(-bhattacharyyaDistance(sky, ground));
   // Brightness: the cells clear of the line (their centres farther than a cell from it).

@@ -18,6 +18,11 @@ struct Evidence {
   double ground_rougher = 0.5; // P(a ground pixel's edge value exceeds a sky pixel's)
   double ground_textured = 0;  // share of ground pixels with an edge value above the noise floor
   double confidence() const { return separation * sky_brighter * ground_rougher * ground_textured; }
+  // Along the line, the colour step between the cells just above and just below it over the
+  // colour change a cell further into either side (median over the cell columns, or rows for
+  // steep lines): a sky/ground boundary is a step, a line through cloud or texture is not.
+  double local_step = 0;
+  double sky_share = 0.5;      // share of the frame on the sky side
 };
 
 struct RefineOptions {
@@ -38,6 +43,8 @@ struct RefinedHorizon {
   double rms = 0;     // the inliers' rms distance from it, px
   int scanlines = 0;  // columns (rows for steep lines) the band crosses
   double t_min = 0, t_max = 0;  // the inliers' extent along the line (x cos a + y sin a)
+  double edge_at_line = 0;    // the median edge value at the inliers
+  double sky_edge_level = 0;  // the sky's own high edge value (its sky_percentile percentile)
   Evidence evidence;
 };
 
@@ -58,6 +65,8 @@ class HorizonRefiner {
     int lo, hi;  // the band's samples on this scanline
   };
   double threshold(const cv::Mat& edges, const SplitLine& line, double band, const RefineOptions& o);
+  double medianEdgeAtInliers(const cv::Mat& edges, const SplitLine& line, double inlier_px);
+  double localStep(const RegionGrid& fine, const SplitLine& line, double noise);
   void scanPoints(const cv::Mat& edges, const SplitLine& line, double threshold);
   bool robustFit(const SplitLine& start, const RefineOptions& o, SplitLine* fitted);
 
@@ -65,6 +74,8 @@ class HorizonRefiner {
   std::vector<int> maxima_;
   std::vector<double> px_, py_, offsets_, weights_;
   std::vector<int> histogram_;
+  std::vector<double> steps_, spreads_;
+  double sky_edge_level_ = 0;
 };
 
 }  // namespace horizon

@@ -1,0 +1,189 @@
+// The horizon model: the fit on data with a known answer, its file, and the shipped model on the
+// simulator's scenes (a horizon outdoors, none indoors), as the nodes load it.
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "rle_vision/io/horizon_model_file.h"
+#include "rle_vision/landmark/landmark_detector.h"
+#include "rle_vision/sim/scene_file.h"
+#include "rle_vision/sim/scene_simulator.h"
+#include "testing/test_helpers.h"
+
+namespace rle_vision {
+namespace {
+
+struct Samples {
+  std::vector<HorizonFeatures> x;
+  std::vector<int> y;
+  std::vector<double> w;
+  HorizonModel fit() const { return fitHorizonModel(x, y, w, 1.0); }
+};
+
+// Two classes apart along separation and sky_brighter only, the other features noise.
+Samples syntheticSamples() {
+  Samples s;
+  std::vector<HorizonFeatures>* x = &s.x;
+  std::vector<int>* y = &s.y;
+  std::vector<double>* w = &s.w;
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  for (int i = 0; i < 400; ++i) {
+    const int label = i % 2;
+    HorizonFeatures f{};
+    for (double& v : f) v = noise(rng);
+    f[kSeparation] += label ? 2.0 : -2.0;
+    f[kSkyBrighter] += label ? 1.0 : -1.0;
+    f[kFromRegions] = 1;  // constant: standardised with scale 1
+    x->push_back(f);
+    y->push_back(label);
+    w->push_back(1.0);
+  }
+  return s;
+}
+
+TEST(HorizonModel, FitsTheFeaturesThatSeparateTheClasses) {
+  const Samples samples = syntheticSamples();
+  const std::vector<HorizonFeatures>& x = samples.x;
+  const std::vector<int>& y = samples.y;
+  const HorizonModel m = samples.fit();
+  ASSERT_TRUE(m.valid);
+  EXPECT_GT(m.weights[kSeparation], 2 * std::fabs(m.weights[kCoverage]));
+  EXPECT_GT(m.weights[kSkyBrighter], 0);
+  EXPECT_DOUBLE_EQ(m.scale[kFromRegions], 1.0);
+  int right = 0;
+  for (size_t i = 0; i < x.size(); ++i) right += (m.probability(x[i]) >= 0.5) == (y[i] == 1);
+  EXPECT_GT(right, 0.95 * x.size());
+  HorizonFeatures clear{};
+  clear[kSeparation] = 4;
+  clear[kSkyBrighter] = 2;
+  EXPECT_GT(m.probability(clear), 0.99);
+  clear[kSeparation] = -4;
+  clear[kSkyBrighter] = -2;
+  EXPECT_LT(m.probability(clear), 0.01);
+  // Deterministic: the same data give the same model.
+  const HorizonModel again = samples.fit();
+  EXPECT_EQ(again.weights, m.weights);
+  EXPECT_EQ(again.bias, m.bias);
+}
+
+TEST(HorizonModel, OneClassOnlyOrNoSamplesGiveNoModel) {
+  std::vector<HorizonFeatures> x(10);
+  std::vector<int> y(10, 1);
+  std::vector<double> w(10, 1.0);
+  EXPECT_FALSE(fitHorizonModel(x, y, w, 1.0).valid);
+  EXPECT_FALSE(fitHorizonModel({}, {}, {}, 1.0).valid);
+  y[3] = 0;
+  w.pop_back();  // weights that do not match the samples
+  EXPECT_FALSE(fitHorizonModel(x, y, w, 1.0).valid);
+}
+
+TEST(HorizonModelFile, WritesAndReadsBackTheSameModel) {
+  const Samples samples = syntheticSamples();
+  const HorizonModel m = samples.fit();
+  const std::string yaml = horizonModelYaml(m, "made by a test\non two lines");
+  EXPECT_EQ(yaml.rfind("# made by a test\n# on two lines\n", 0), 0u) << yaml;
+  const HorizonModel back = parseHorizonModel(yaml, "test.yaml");
+  ASSERT_TRUE(back.valid);
+  for (int f = 0; f < kHorizonFeatureCount; ++f) {
+    EXPECT_NEAR(back.weights[f], m.weights[f], 1e-8 * (1 + std::fabs(m.weights[f])));
+    EXPECT_NEAR(back.mean[f], m.mean[f], 1e-8 * (1 + std::fabs(m.mean[f])));
+  }
+  EXPECT_NEAR(back.probability(samples.x[0]), m.probability(samples.x[0]), 1e-7);
+}
+
+TEST(HorizonModelFile, BrokenFilesAreRefusedWithTheLineAndTheReason) {
+  const std::string good = horizonModelYaml(syntheticSamples().fit(), "test");
+  auto refused = [](const std::string& text, const std::string& reason) {
+    try {
+      parseHorizonModel(text, "model.yaml");
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).rfind("model.yaml:", 0), 0u) << e.what();
+      return;
+    }
+    ADD_FAILURE() << "accepted: " << text;
+  };
+  std::string renamed = good;
+  renamed.replace(renamed.find("separation"), 10, "separatoin");
+  refused(renamed, "feature 1 must be 'separation'");
+  std::string short_list = good;
+  short_list.replace(short_list.find("bias:"), 5, "biass:");
+  refused(short_list, "unknown key 'biass'");
+  std::string word = good;
+  const size_t weights = word.find("weights: [") + 10;
+  word.replace(weights, word.find(',', weights) - weights, "heavy");
+  refused(word, "'weights' holds something that is not a number");
+  refused("features: [a]\n", "'features' must list the");
+  EXPECT_THROW(loadHorizonModel("/nonexistent/model.yaml"), ConfigError);
+  EXPECT_FALSE(horizonModelFromSetting("none").valid);
+}
+
+// The shipped model as the nodes load it: the horizon of the default scene's walking gait, and
+// none indoors (a carpet with field lines, no sky in view).
+TEST(HorizonModel, TheShippedModelFindsTheSimulatorsHorizonAndNoneIndoors) {
+  LandmarkOptions options;
+  options.horizon.model = horizonModelFromSetting("");
+  ASSERT_TRUE(options.horizon.model.valid) << "config/horizon_model.yaml not found";
+  LandmarkDetector detector;
+  LandmarkResult result;
+  const SceneSimulator outdoor(loadSceneConfig(test::sourcePath("config/scene_default.yaml")));
+  const SceneSimulator indoor(loadSceneConfig(test::sourcePath("config/scene_indoor.yaml")));
+  int found = 0, found_indoors = 0;
+  double worst_deg = 0;
+  for (int i = 0; i < 20; ++i) {
+    const SimFrame frame = outdoor.render(13 * i, 13 * i / 30.0);
+    detector.detectInImage(frame.image, options, &result);
+    found += result.horizon.found;
+    if (result.horizon.found) {
+      worst_deg = std::max(worst_deg, lineAngleDifference(result.horizon.line.theta, frame.horizon.theta) * 180 / M_PI);
+    }
+    detector.detectInImage(indoor.render(13 * i, 13 * i / 30.0).image, options, &result);
+    found_indoors += result.horizon.found;
+  }
+  EXPECT_EQ(found, 20);
+  EXPECT_LT(worst_deg, 1.0);
+  EXPECT_EQ(found_indoors, 0);
+}
+
+// With a model every candidate is weighed; the candidates carry the features the model reads.
+TEST(HorizonModel, CandidatesCarryTheirEvidence) {
+  const SceneSimulator outdoor(loadSceneConfig(test::sourcePath("config/scene_default.yaml")));
+  const SimFrame frame = outdoor.render(0, 0.0);
+  LandmarkOptions options;
+  LandmarkDetector detector;
+  LandmarkResult result;
+  detector.detectInImage(frame.image, options, &result);
+  HorizonDetector horizon;
+  const std::vector<HorizonEstimate> candidates =
+      horizon.candidates(frame.image, detector.edges(), options.edge_gain, result.lines, options.horizon);
+  ASSERT_GE(candidates.size(), 2u);
+  EXPECT_EQ(candidates.front().features[kFromRegions], 1);
+  for (const HorizonEstimate& c : candidates) {
+    for (int f = 0; f < kHorizonFeatureCount; ++f) EXPECT_TRUE(std::isfinite(c.features[f])) << horizonFeatureName(f);
+    EXPECT_LE(c.features[kSeparation], 0);  // log-probabilities
+    EXPECT_GE(c.features[kSeparation], std::log(0.01) - 1e-12);
+  }
+  // One of them is the true horizon, a colour step across the line.
+  const auto truth = std::find_if(candidates.begin(), candidates.end(), [&](const HorizonEstimate& c) {
+    double x = 0, y = 0;
+    pointOnLine(c.line, &x, &y);
+    return lineAngleDifference(c.line.theta, frame.horizon.theta) * 180 / M_PI < 1.0 &&
+           std::fabs(signedDistance(frame.horizon, x, y)) < 3.0;
+  });
+  ASSERT_NE(truth, candidates.end());
+  // The shipped model weighs it above every other candidate.
+  const HorizonModel model = horizonModelFromSetting("");
+  for (const HorizonEstimate& c : candidates) {
+    if (lineAngleDifference(c.line.theta, truth->line.theta) > 1e-9 || std::fabs(c.line.intercept - truth->line.intercept) > 1e-9) {
+      EXPECT_LE(model.probability(c.features), model.probability(truth->features));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rle_vision
