@@ -4,6 +4,7 @@
 // against the simulator's exact edges; the paper's sample-pair comparison (RLE per object vs global).
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <string>
@@ -15,6 +16,7 @@
 #include "eval/benchmark_frame.h"
 #include "harness.h"
 #include "eval/line_matching.h"
+#include "rle_vision/io/horizon_model_file.h"
 #include "rle_vision/landmark/landmark_detector.h"
 
 using namespace rle_vision;
@@ -74,10 +76,11 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-// Real frames (no ground truth for their lines: time only), each method from the colour image:
-// every 10th frame listed in DIR/label.csv (images in DIR/images/ or DIR/); medians over the
-// frames of per-frame medians, as on the simulator. make eval has the accuracy on all of them.
-std::vector<cv::Mat> loadRealFrames(const std::string& dir) {
+// Real frames (no ground truth for their lines: time only), each method from the colour image,
+// as the nodes run (the landmark with the shipped horizon model): medians over the frames of
+// per-frame medians, as on the simulator. make eval has the accuracy on all of them.
+// UAV frames: every 10th frame listed in DIR/label.csv (images in DIR/images/ or DIR/).
+std::vector<cv::Mat> loadLabelledFrames(const std::string& dir) {
   std::vector<cv::Mat> frames;
   std::ifstream labels(dir + "/label.csv");
   std::string line;
@@ -92,27 +95,53 @@ std::vector<cv::Mat> loadRealFrames(const std::string& dir) {
   return frames;
 }
 
-std::vector<std::pair<std::string, double>> benchRealFrames(const std::string& dir) {
-  const std::vector<cv::Mat> frames = loadRealFrames(dir);
+// The robot's own kind of frame: every 15th image under DIR (sorted; indoor MSL frames).
+std::vector<cv::Mat> loadEveryFifteenth(const std::string& dir) {
+  std::vector<std::string> paths;
+  if (std::filesystem::is_directory(dir)) {
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
+      if (entry.is_regular_file() && entry.path().extension() == ".jpg") paths.push_back(entry.path().string());
+    }
+  }
+  std::sort(paths.begin(), paths.end());
+  std::vector<cv::Mat> frames;
+  for (size_t i = 0; i < paths.size(); i += 15) {
+    cv::Mat image = cv::imread(paths[i], cv::IMREAD_COLOR);
+    if (!image.empty()) frames.push_back(image);
+  }
+  return frames;
+}
+
+using Values = std::vector<std::pair<std::string, double>>;
+
+// Ours (whole and per stage) against the line detectors on `frames`, keys prefixed `key`.
+Values benchRealFrames(const std::vector<cv::Mat>& frames, const std::string& key, const std::string& title) {
   if (frames.empty()) {
-    std::printf("\nreal frames: none readable in %s (skipped)\n", dir.c_str());
+    std::printf("\n%s: none readable (skipped)\n", title.c_str());
     return {};
   }
   LandmarkDetector detector;
   LandmarkResult result;
-  const LandmarkOptions options;
+  LandmarkOptions options;
+  options.horizon.model = horizonModelFromSetting("");
   const cv::Ptr<cv::ximgproc::FastLineDetector> fld = cv::ximgproc::createFastLineDetector();
   const cv::Ptr<cv::LineSegmentDetector> lsd = cv::createLineSegmentDetector(cv::LSD_REFINE_STD);
   cv::Mat grey, blurred, canny;
   std::vector<cv::Vec4f> segments;
   std::vector<cv::Vec4i> int_segments;
-  std::vector<double> ours_ms, fld_ms, lsd_ms, houghp_ms;
+  std::vector<double> ours_ms, sobel_ms, objects_ms, hough_ms, horizon_ms, fld_ms, lsd_ms, houghp_ms;
+  int budget_cut = 0;
   for (const cv::Mat& image : frames) {
-    ours_ms.push_back(bench::medianMs([&] { detector.detectInImage(image, options, &result); }, 15, 2));
+    ours_ms.push_back(bench::medianMs([&] { detector.detectInImage(image, options, &result); }, 9, 2));
+    budget_cut += result.hough.budget_exhausted;
+    sobel_ms.push_back(result.sobel_ms);
+    objects_ms.push_back(result.objects_ms);
+    hough_ms.push_back(result.hough_ms);
+    horizon_ms.push_back(result.horizon_ms);
     fld_ms.push_back(bench::medianMs([&] {
       cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
       fld->detect(grey, segments);
-    }, 15, 2));
+    }, 9, 2));
     lsd_ms.push_back(bench::medianMs([&] {
       cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
       lsd->detect(grey, segments);
@@ -124,19 +153,29 @@ std::vector<std::pair<std::string, double>> benchRealFrames(const std::string& d
       cv::HoughLinesP(canny, int_segments, 1, CV_PI / 180, 30, 30, 8);
     }, 5, 1));
   }
-  const double ours = median(ours_ms), fld_time = median(fld_ms), lsd_time = median(lsd_ms), houghp = median(houghp_ms);
-  std::printf("\nreal frames: %zu of %s (every 10th labelled, %dx%d), time only (accuracy: make eval)\n", frames.size(),
-              dir.c_str(), frames[0].cols, frames[0].rows);
+  const double ours = median(ours_ms), fld_time = median(fld_ms);
+  std::printf("\n%s: %zu frames %dx%d, time only (accuracy: make eval)\n", title.c_str(), frames.size(), frames[0].cols,
+              frames[0].rows);
   std::printf("  %-46s %8.3f ms   (frames: %.3f to %.3f ms)\n", "ours: Sobel + RLE Hough + horizon", ours,
               *std::min_element(ours_ms.begin(), ours_ms.end()), *std::max_element(ours_ms.begin(), ours_ms.end()));
+  std::printf("  %-46s %8.3f / %.3f / %.3f / %.3f ms\n", "  Sobel / edge objects / Hough / horizon", median(sobel_ms),
+              median(objects_ms), median(hough_ms), median(horizon_ms));
+  std::printf("  %-46s %8d of %zu\n", "  frames whose line budget ran out", budget_cut, frames.size());
   printPeer("cvtColor + FastLineDetector", fld_time, ours);
-  printPeer("cvtColor + LSD", lsd_time, ours);
-  printPeer("cvtColor + Gauss + Canny + HoughLinesP", houghp, ours);
-  return {{"real_frames", double(frames.size())},
-          {"real_frame_ms", ours},
-          {"real_frame_fld_ms", fld_time},
-          {"real_frame_lsd_ms", lsd_time},
-          {"real_frame_houghp_ms", houghp}};
+  printPeer("cvtColor + LSD", median(lsd_ms), ours);
+  printPeer("cvtColor + Gauss + Canny + HoughLinesP", median(houghp_ms), ours);
+  std::printf("  %-46s %8.2f x    (target <= 0.5)\n", "ours / FastLineDetector", ours / fld_time);
+  return {{key + "frames", double(frames.size())},
+          {key + "frame_ms", ours},
+          {key + "sobel_ms", median(sobel_ms)},
+          {key + "objects_ms", median(objects_ms)},
+          {key + "hough_ms", median(hough_ms)},
+          {key + "horizon_ms", median(horizon_ms)},
+          {key + "frame_fld_ms", fld_time},
+          {key + "frame_lsd_ms", median(lsd_ms)},
+          {key + "frame_houghp_ms", median(houghp_ms)},
+          {key + "ratio_to_fld", ours / fld_time},
+          {key + "frames_budget_cut", double(budget_cut)}};
 }
 
 // Everything measured on the simulator frames: per-frame medians of each method's time, and the
@@ -340,7 +379,7 @@ void printAccuracy(const SimulatorRun& r, const std::map<std::string, double>& v
 
 }  // namespace
 
-// rle_vision_bench_landmark [SOURCE_DIR [JSON [REAL_FRAMES_DIR]]]
+// rle_vision_bench_landmark [SOURCE_DIR [JSON [UAV_FRAMES_DIR [ROBOT_FRAMES_DIR]]]]
 int main(int argc, char** argv) {
   const std::string source_dir = argc > 1 ? argv[1] : RLE_VISION_SOURCE_DIR;
   const std::string json_path = argc > 2 ? argv[2] : source_dir + "/bench/measured/landmark.json";
@@ -355,9 +394,13 @@ int main(int argc, char** argv) {
   const std::map<std::string, double> by_key(values.begin(), values.end());
   printTimes(by_key);
   printAccuracy(run, by_key, LandmarkOptions().hough.min_line_length_px);
-  if (argc > 3) {
-    const std::vector<std::pair<std::string, double>> real = benchRealFrames(argv[3]);
+  if (argc > 3 && argv[3][0] != '\0') {
+    const Values real = benchRealFrames(loadLabelledFrames(argv[3]), "real_", std::string("UAV frames of ") + argv[3]);
     values.insert(values.end(), real.begin(), real.end());
+  }
+  if (argc > 4) {
+    const Values msl = benchRealFrames(loadEveryFifteenth(argv[4]), "msl_", std::string("indoor robot frames of ") + argv[4]);
+    values.insert(values.end(), msl.begin(), msl.end());
   }
   bench::writeJson(json_path, values);
   std::printf("wrote %s\n", json_path.c_str());

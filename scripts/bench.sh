@@ -9,10 +9,13 @@ cd "$WS" && catkin_make -DRLE_VISION_BUILD_BENCHMARKS=ON -j"${JOBS:-2}" rle_visi
 ball_folder=$(find "${EVAL_BALLS_DIR:-$ROOT/../shared/data/robocup_msl/20220716}" -mindepth 1 -maxdepth 1 -type d 2>/dev/null | sort | head -1 || true)
 "$WS/devel/lib/rle_vision/rle_vision_bench_tracker" "$ROOT" "$RESULTS_DIR/tracker.json" ${ball_folder:+"$ball_folder"}
 echo
-# Real frames for the landmark timing: make eval's folder, when it is there.
+# Real frames for the landmark timing: make eval's UAV folder and, the robot's own kind of frame,
+# its indoor MSL frames, when they are there.
 real_dir="${EVAL_DIR:-$ROOT/../shared/data/uav_horizon}"
-real_frames=()
+robot_dir="${EVAL_NEGATIVES_DIR:-$ROOT/../shared/data/robocup_msl}"
+real_frames=("")
 [[ -f "$real_dir/label.csv" ]] && real_frames=("$real_dir")
+[[ -d "$robot_dir" ]] && real_frames+=("$robot_dir")
 "$WS/devel/lib/rle_vision/rle_vision_bench_landmark" "$ROOT" "$RESULTS_DIR/landmark.json" "${real_frames[@]}"
 echo
 report_results tracker landmark

@@ -76,6 +76,7 @@ class LandmarkNodelet : public nodelet::Nodelet {
   sensor_msgs::ImageConstPtr waitForColour(const ros::Time& stamp);
   bool camera(const cv::Size& size, PinholeCamera* camera);
   void noteMissingColour(const std_msgs::Header& header, const cv::Size& size);
+  void reportBudget(diagnostic_updater::DiagnosticStatusWrapper& status);
   void learnColours(const std_msgs::Header& header, const cv::Mat& bgr, const LandmarkResult& result,
                     const Settings& settings);
   void publishRanges(const std_msgs::Header& header, const std::vector<ColorClass>& classes);
@@ -120,6 +121,10 @@ class LandmarkNodelet : public nodelet::Nodelet {
   std::atomic<int> learned_classes_{0};
   std::atomic<bool> learning_enabled_{true};
   std::atomic<int> frames_without_colour_{0};
+  // Frames whose Hough work budget (max_refinements_per_frame) ran out: since the last report,
+  // in all, and the edge objects the last such frame skipped.
+  std::atomic<int> frames_over_budget_{0}, frames_over_budget_total_{0};
+  std::atomic<uint64_t> objects_skipped_{0};
   std::atomic<bool> resume_taken_{false};
 
   // Used by the worker only.
@@ -170,6 +175,7 @@ void LandmarkNodelet::onInit() {
     const double published = ranges_published_s_.load();
     s.add("colour ranges age (s)", published > 0 ? ros::WallTime::now().toSec() - published : -1.0);
     s.add("frames without a colour image of their stamp", frames_without_colour_.load());
+    reportBudget(s);
   });
   diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
 
@@ -281,6 +287,11 @@ void LandmarkNodelet::process(const sensor_msgs::ImageConstPtr& msg) {
   if (bgr.empty()) noteMissingColour(msg->header, edges.size());
   LandmarkResult result;
   detector_.detect(bgr, edges, s.landmark, &result);
+  if (result.hough.budget_exhausted) {
+    ++frames_over_budget_;
+    ++frames_over_budget_total_;
+    objects_skipped_ = result.hough.objects_skipped;
+  }
   double roll = 0, pitch = 0;
   horizonAttitude(result.horizon.line, have_camera ? &camera_model : nullptr, &roll, &pitch);
   auto lines = boost::make_shared<LineArray>();
@@ -389,6 +400,17 @@ void LandmarkNodelet::learnColours(const std_msgs::Header& header, const cv::Mat
   }
   if (step.resumed > 0) NODELET_INFO("resuming from %d learned colour ranges the tracker uses", step.resumed);
   if (step.publish) publishRanges(header, step.classes);
+}
+
+void LandmarkNodelet::reportBudget(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  const int over_budget = frames_over_budget_.exchange(0);
+  status.add("frames whose line budget ran out (since last report)", over_budget);
+  status.add("frames whose line budget ran out (total)", frames_over_budget_total_.load());
+  if (over_budget == 0) return;
+  status.add("edge objects skipped (last such frame)", objects_skipped_.load());
+  status.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN,
+                      "cluttered frames: the line budget max_refinements_per_frame ran out and the smallest edge objects "
+                      "were skipped (raise it, or raise min_line_length_px or the edge thresholds)");
 }
 
 void LandmarkNodelet::noteMissingColour(const std_msgs::Header& header, const cv::Size& size) {

@@ -84,7 +84,8 @@ std::string detectionJson(const std::string& file, int width, int height, const 
   blobsJson(json, blobs, table);
   json << "],\"lines\":[";
   linesJson(json, result.lines);
-  json << "],\"horizon\":";
+  json << "],\"line_budget_exhausted\":" << (result.hough.budget_exhausted ? "true" : "false")
+       << ",\"edge_objects_skipped\":" << result.hough.objects_skipped << ",\"horizon\":";
   horizonJson(json, result.horizon);
   if (ranges_in_use) {
     json << ",\"ranges\":[";

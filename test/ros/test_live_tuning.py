@@ -5,11 +5,13 @@ dynamic_reconfigure, feeds a synthetic image whose right answer differs between 
 values, and checks the output."""
 import math
 import sys
+import threading
 import time
 import unittest
 
 import rospy
 import rostest
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from dynamic_reconfigure.client import Client
 from rle_vision.msg import BlobArray, ColorRangeArray, Horizon, LineArray
 from sensor_msgs.msg import Image
@@ -35,6 +37,12 @@ class LiveTuningTest(unittest.TestCase):
         cls.ranges = ByStamp('/tune_landmark/color_ranges', ColorRangeArray, queue_size=20)
         # Watching the overlay keeps the landmark node on the colour images whatever learning does.
         cls.overlay = ByStamp('/tune_landmark/landmark/debug_image', Image, queue_size=20)
+        cls.diagnostics, cls.diagnostics_lock = [], threading.Lock()
+
+        def on_diagnostics(msg):
+            with cls.diagnostics_lock:
+                cls.diagnostics.extend(s for s in msg.status if s.name.lstrip('/').startswith('tune_landmark/landmark:'))
+        rospy.Subscriber('/diagnostics', DiagnosticArray, on_diagnostics, queue_size=50)
         cls.tracker = Client('/tune_tracker/tracker', timeout=30 * SLOW)
         cls.edge_detector = Client('/tune_landmark/edge_detector', timeout=30 * SLOW)
         cls.landmark = Client('/tune_landmark/landmark', timeout=30 * SLOW)
@@ -242,6 +250,27 @@ class LiveTuningTest(unittest.TestCase):
         self.landmark.update_configuration({'max_samples_per_object': 10, 'max_rounds': 1})
         self.assertEqual(len(self.hough_lines(self.landmarks(scene)[0])), 1)
         self.landmark.update_configuration({'max_samples_per_object': 2000, 'max_rounds': 4})
+
+    def test_landmark_max_refinements_per_frame(self):
+        scene = self.box_scene()  # the horizon (the largest edge object) and the box's edges
+        self.landmark.update_configuration({'max_refinements_per_frame': 500})
+        many = len(self.hough_lines(self.landmarks(scene)[0]))
+        self.assertGreaterEqual(many, 5)
+        # A budget of one fit: the largest object's line, the horizon between rows 96 and 97;
+        # diagnostics say the budget ran out, with the fix.
+        self.landmark.update_configuration({'max_refinements_per_frame': 1})
+        hough = self.hough_lines(self.landmarks(scene)[0])
+        self.assertEqual(len(hough), 1)
+        self.assertAlmostEqual(hough[0].intercept, 96.5, delta=1.0)
+
+        def budget_warned():
+            with self.diagnostics_lock:
+                return [s for s in self.diagnostics if s.level == DiagnosticStatus.WARN and
+                        'max_refinements_per_frame ran out' in s.message and
+                        int({v.key: v.value for v in s.values}.get('frames whose line budget ran out (total)', 0)) >= 1]
+        self.assertTrue(wait_for(budget_warned, 10 * SLOW), 'no budget warning on /diagnostics')
+        self.landmark.update_configuration({'max_refinements_per_frame': 500})
+        self.assertEqual(len(self.hough_lines(self.landmarks(scene)[0])), many)
 
     def test_landmark_horizon_max_angle_deg(self):
         tilted = self.horizon_scene(20.0)

@@ -12,7 +12,9 @@
 // The number of pairs per object follows eq. 2-4: p_i = n_i / p, S = n / p_i^2 for the
 // shortest line wanted (n_i its pixels, p the object's pixels, n the votes wanted), with a
 // cap; found lines claim their pixels, and further rounds sample, sized the same way, the
-// pixels left unexplained (so large objects are not starved by the cap).
+// pixels left unexplained (so large objects are not starved by the cap). Work per frame is
+// bounded: at most max_refinements_per_frame candidates are fitted, objects taken largest first
+// (the longest lines first); the objects the budget does not reach are counted in the stats.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +35,10 @@ struct HoughStats {
   uint64_t global_sample_pairs = 0;  // pairs eq. 4 asks of one Hough over all edge pixels
   uint64_t candidates = 0;           // peaks with enough votes
   uint64_t refinements = 0;          // candidates refined (the others repeated a found line)
+  // The frame's work budget (max_refinements_per_frame) ran out: candidates were left unfitted,
+  // in objects_skipped objects not examined at all and perhaps in the one it ran out in.
+  bool budget_exhausted = false;
+  uint64_t objects_skipped = 0;
 };
 
 // Holds scratch buffers; reuse one instance per thread. Deterministic: the same objects and

@@ -113,7 +113,7 @@ struct RleHough::Impl {
   std::vector<int32_t> row_first;
   std::vector<uint8_t> claimed;
   std::vector<Run> sample_runs;
-  std::vector<uint32_t> order, members;
+  std::vector<uint32_t> order, members, by_size;
   std::vector<char> used;  // per cell: grouped or retired
   std::vector<Interval> intervals;
   std::vector<RidgeFit> fits;
@@ -168,9 +168,23 @@ void RleHough::Impl::detect(const EdgeObjectFinder& edges, int width, int height
                             const Refinement& how, std::vector<DetectedLine>* lines, HoughStats* stats) {
   lines->clear();
   *stats = HoughStats();
-  for (int i = 0; i < static_cast<int>(edges.objects().size()); ++i) {
-    detectInObject(edges, i, width, height, o, how, lines, stats);
+  // Largest objects first, so that a frame's budget goes to the longest lines; the lines come
+  // out in the objects' order, as if visited in it (each object's lines do not depend on others).
+  const std::vector<EdgeObject>& objects = edges.objects();
+  by_size.resize(objects.size());
+  for (size_t i = 0; i < by_size.size(); ++i) by_size[i] = static_cast<uint32_t>(i);
+  std::stable_sort(by_size.begin(), by_size.end(),
+                   [&objects](uint32_t a, uint32_t b) { return objects[a].pixels > objects[b].pixels; });
+  for (const uint32_t i : by_size) {
+    if (objects[i].pixels < o.min_line_length_px) continue;  // too small to hold a line of that length
+    if (stats->budget_exhausted) {
+      ++stats->objects_skipped;
+      continue;
+    }
+    detectInObject(edges, static_cast<int>(i), width, height, o, how, lines, stats);
   }
+  std::stable_sort(lines->begin(), lines->end(),
+                   [](const DetectedLine& a, const DetectedLine& b) { return a.object < b.object; });
   // The paper's comparison: one global random Hough over every edge pixel needs eq. 4's pairs
   // for the shortest line among all of them.
   uint64_t all_pixels = 0;
@@ -182,7 +196,6 @@ void RleHough::Impl::detectInObject(const EdgeObjectFinder& edges, int index, in
                                     const HoughOptions& o, const Refinement& how, std::vector<DetectedLine>* lines,
                                     HoughStats* stats) {
   const EdgeObject& object = edges.objects()[index];
-  if (object.pixels < o.min_line_length_px) return;  // too small to hold a line of that length
   const Run* runs = edges.runs().data() + object.first_run;
   ++stats->objects;
   row_first.assign(static_cast<size_t>(object.bottom - object.top) + 2, 0);
@@ -202,7 +215,7 @@ void RleHough::Impl::detectInObject(const EdgeObjectFinder& edges, int index, in
     stats->sample_pairs += samples;
     accumulator.vote(sample_runs.data(), static_cast<int>(sample_runs.size()), samples,
                      o.seed * 0x9E3779B97F4A7C15ull + static_cast<uint64_t>(index) * 8 + round + 1, width, height, o);
-    if (extractLines(indexed, object, index, o, how, &found, stats) == 0) break;
+    if (extractLines(indexed, object, index, o, how, &found, stats) == 0 || stats->budget_exhausted) break;
     unclaimedRuns(runs, object.run_count, indexed);
   }
   lines->insert(lines->end(), found.begin(), found.end());
@@ -241,6 +254,10 @@ int RleHough::Impl::extractLines(const ObjectRuns& runs, const EdgeObject& objec
       used[seed_index] = 1;
       ++failures;
       continue;
+    }
+    if (stats->candidates >= static_cast<uint64_t>(o.max_refinements_per_frame)) {
+      stats->budget_exhausted = true;
+      break;
     }
     ++stats->candidates;
     refined.clear();

@@ -122,6 +122,55 @@ TEST(RleHough, DeterministicForASeed) {
   }
 }
 
+TEST(RleHough, AFramesWorkBudgetGoesToTheLongestLinesAndIsReported) {
+  // Eight separate lines (each its own edge object), 40 to 180 px, shortest at the top.
+  cv::Mat image(240, 320, CV_8UC3, cv::Scalar(40, 70, 40));
+  std::vector<Segment> drawn;
+  for (int i = 0; i < 8; ++i) {
+    const double length = 40 + 20 * i, y = 20.5 + 27 * i;
+    drawn.push_back(Segment{60, y, 60 + length, y + 0.1 * length});
+    cv::line(image, cv::Point(cvRound(drawn.back().x1 * 16), cvRound(drawn.back().y1 * 16)),
+             cv::Point(cvRound(drawn.back().x2 * 16), cvRound(drawn.back().y2 * 16)), cv::Scalar(220, 220, 220), 1,
+             cv::LINE_AA, 4);
+  }
+  LandmarkDetector detector;
+  LandmarkOptions options;
+  LandmarkResult full;
+  detector.detectInImage(image, options, &full);
+  EXPECT_FALSE(full.hough.budget_exhausted);
+  EXPECT_EQ(full.hough.objects_skipped, 0u);
+  EXPECT_EQ(scoreLines(full.lines, drawn, 1.0 * kDeg, 2.0).found, 8);
+  // Lines come out in the objects' order (top to bottom here), whatever order they were fitted in.
+  for (size_t i = 1; i < full.lines.size(); ++i) EXPECT_LE(full.lines[i - 1].object, full.lines[i].object);
+
+  // Exactly the fits it took: nothing cut.
+  options.hough.max_refinements_per_frame = static_cast<int>(full.hough.candidates);
+  LandmarkResult exact;
+  detector.detectInImage(image, options, &exact);
+  EXPECT_FALSE(exact.hough.budget_exhausted);
+  EXPECT_EQ(exact.lines.size(), full.lines.size());
+
+  // Half of them: the longest lines are found, each shorter one only if every longer one is,
+  // and the objects not reached are counted.
+  options.hough.max_refinements_per_frame = static_cast<int>(full.hough.candidates / 2);
+  LandmarkResult cut;
+  detector.detectInImage(image, options, &cut);
+  EXPECT_TRUE(cut.hough.budget_exhausted);
+  EXPECT_EQ(cut.hough.candidates, full.hough.candidates / 2);
+  bool longer_found = true;
+  int found = 0;
+  for (int i = 7; i >= 0; --i) {
+    const bool is_found = scoreLines(cut.lines, {drawn[i]}, 1.0 * kDeg, 2.0).found == 1;
+    EXPECT_TRUE(!is_found || longer_found) << "the " << 40 + 20 * i << "-px line found before a longer one";
+    longer_found = is_found;
+    found += is_found;
+  }
+  EXPECT_GE(found, 2);
+  EXPECT_LE(found, 6);
+  EXPECT_GE(cut.hough.objects_skipped, static_cast<uint64_t>(8 - found - 1));
+  EXPECT_EQ(cut.hough.objects + cut.hough.objects_skipped, 8u);
+}
+
 TEST(RleHough, NoLinesOnBlankImagesAndFewOnPureNoise) {
   LandmarkDetector detector;
   LandmarkResult result;
@@ -245,7 +294,7 @@ TEST(LandmarkParams, DefaultsFileRoundTripsEveryParameter) {
   RLE_EXPECT_READ_BACK(key, learning.member, learning_defaults.member)
 #include "rle_vision/params/landmark_params.def"
 #undef RLE_EXPECT_READ_BACK
-  EXPECT_EQ(keys, 52);
+  EXPECT_EQ(keys, 53);
   // Values that differ from the defaults are read, too.
   EXPECT_EQ(parseLandmarkParams("gray_threshold: 40\nthin_edges: false\nseed: 7\n", "l.yaml").objects.gray_threshold, 40);
   EXPECT_EQ(parseLandmarkParams("seed: 7\n", "l.yaml").hough.seed, 7u);
