@@ -8,6 +8,9 @@
 #  - Balls: EVAL_BALLS_DIR (default ../shared/data/robocup_msl/20220716 when it exists), folders
 #    of images with YOLO labels (ball class EVAL_BALL_CLASS, default 0): the class is calibrated
 #    on the first folder (sorted) and scored on the others; writes eval_balls.json.
+#  - Field boundary: the same robot frames, per date, each frame alone: how often a boundary is
+#    found and the share of labelled balls, robots and people it puts on the field side; writes
+#    eval_field.json.
 # The JSON goes to bench/measured/ (RECORD=1: bench/results/, and the docs' tables rewritten).
 # On the default data both are checked against bench/eval_floor.json (the best figures landed
 # so far: a regression fails; see scripts/check_eval_floor.py).
@@ -19,7 +22,8 @@ for dir in ${EVAL_DIR:-$ROOT/../shared/data/uav_horizon $ROOT/../shared/data/uav
 done
 negatives_dir="${EVAL_NEGATIVES_DIR:-$ROOT/../shared/data/robocup_msl}"
 balls_dir="${EVAL_BALLS_DIR:-$ROOT/../shared/data/robocup_msl/20220716}"
-cd "$WS" && catkin_make -DRLE_VISION_BUILD_BENCHMARKS=ON -j"${JOBS:-2}" rle_vision_eval_horizon rle_vision_eval_balls >/dev/null
+cd "$WS" && catkin_make -DRLE_VISION_BUILD_BENCHMARKS=ON -j"${JOBS:-2}" rle_vision_eval_horizon rle_vision_eval_balls \
+  rle_vision_eval_field >/dev/null
 checked=()
 if (( ${#horizon_dirs[@]} )); then
   negatives=()
@@ -38,7 +42,11 @@ if (( ${#folders[@]} >= 2 )); then
 else
   echo "[eval] no folders of YOLO-labelled frames under $balls_dir (two or more: one to calibrate, the others to score): balls not evaluated (EVAL_BALLS_DIR=...)"
 fi
+# The field boundary on the same robot frames, every date on its own (issue 29: no floor yet).
+if [[ -d "$negatives_dir" ]]; then
+  "$WS/devel/lib/rle_vision/rle_vision_eval_field" --json "$RESULTS_DIR/eval_field.json" "$negatives_dir"
+fi
 if (( ${#checked[@]} )); then
   python3 "$ROOT/scripts/check_eval_floor.py" "${checked[@]}" --floor "$ROOT/bench/eval_floor.json"
 fi
-report_results eval_horizon eval_balls
+report_results eval_horizon eval_balls eval_field

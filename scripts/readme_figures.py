@@ -196,6 +196,21 @@ def eval_balls_bound():
                 d['command'], d['date'], ', '.join(d['scored'])))
 
 
+def eval_field():
+    d = load('eval_field')
+    groups = sorted({k.split('.')[1] for k in d if k.startswith('dates.')}) + ['all']
+    rows = []
+    for g in groups:
+        key = 'all' if g == 'all' else 'dates.' + g
+        cells = ['%.1f%% of %d' % (d[key + '.%s_on_field_pct' % c], d[key + '.%s_objects' % c])
+                 for c in ('ball', 'obstacle', 'human')]
+        rows.append([('**%s**' % g) if g == 'all' else g, int(d[key + '.frames']),
+                     '%.1f%%' % d[key + '.boundary_found_pct']] + cells + [ms(d[key + '.ms_per_frame'])])
+    return (table(['date', 'frames', 'boundary found', 'balls on the field side', 'robots on the field side',
+                   'people on the field side', 'field stage (seeded per frame)'], rows) +
+            '\n\n' + provenance('make eval', 'eval_field', d))
+
+
 def latency():
     d = load('latency')
     rows = []
@@ -224,7 +239,7 @@ def latency():
 
 WRITERS = {f.__name__: f for f in (tracker, tracker_noise, tracker_bounded, landmark, eval_horizon, eval_no_horizon,
                                    eval_robustness, eval_balls,
-                                   eval_balls_bound, latency)}
+                                   eval_balls_bound, eval_field, latency)}
 
 
 def render(text):

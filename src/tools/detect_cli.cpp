@@ -114,8 +114,9 @@ std::string baseName(const std::string& path) {
 
 // Writes `out`: the image with blobs, lines and the horizon drawn.
 bool annotate(const cv::Mat& image, const std::vector<TrackedBlob>& blobs, const ColorTable& table,
-              const LandmarkResult& result, const std::string& out) {
+              const LandmarkResult& result, const FieldResult& field, const std::string& out) {
   cv::Mat canvas = image.clone();
+  drawFieldBoundary(&canvas, field.boundary);
   drawBlobs(&canvas, blobs, table);
   double roll = 0, pitch = 0;
   if (result.horizon.found) horizonAttitude(result.horizon.line, nullptr, &roll, &pitch);
@@ -140,16 +141,19 @@ class ImageDetector {
     }
     std::vector<TrackedBlob> blobs;
     LandmarkResult result;
+    FieldResult field;
     try {
       ColorTracker tracker;  // a new one per image: nothing carries over
       tracker.process(image, PixelFormat::BGR8, table_, 0.0, &blobs);
       detector_.detectInImage(image, options_, &result);
+      FieldDetector().detect(image, &field);  // the field colour seeded on this image
     } catch (const std::exception& e) {
       std::cout << errorJson(path, e.what()) << std::endl;
       return false;
     }
-    std::cout << detectionJson(path, image.cols, image.rows, blobs, table_, result) << std::endl;
-    return annotate_dir.empty() || annotate(image, blobs, table_, result, annotate_dir + "/" + baseName(path) + ".png");
+    std::cout << detectionJson(path, image.cols, image.rows, blobs, table_, result, field) << std::endl;
+    return annotate_dir.empty() ||
+           annotate(image, blobs, table_, result, field, annotate_dir + "/" + baseName(path) + ".png");
   }
 
  private:
@@ -182,10 +186,11 @@ class SequenceDetector {
     if (!frame.ignored_ranges.empty()) {
       std::cerr << "rle_vision_detect: ignoring learned ranges after " << path << ": " << frame.ignored_ranges << "\n";
     }
-    std::cout << detectionJson(path, image.cols, image.rows, frame.blobs, *frame.table, frame.landmarks, true)
+    std::cout << detectionJson(path, image.cols, image.rows, frame.blobs, *frame.table, frame.landmarks, frame.field,
+                               true)
               << std::endl;
-    return annotate_dir.empty() ||
-           annotate(image, frame.blobs, *frame.table, frame.landmarks, annotate_dir + "/" + baseName(path) + ".png");
+    return annotate_dir.empty() || annotate(image, frame.blobs, *frame.table, frame.landmarks, frame.field,
+                                            annotate_dir + "/" + baseName(path) + ".png");
   }
 
  private:

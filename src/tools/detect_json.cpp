@@ -14,14 +14,26 @@ std::string number(double v) {
   return buffer;
 }
 
-void blobsJson(std::ostringstream& json, const std::vector<TrackedBlob>& blobs, const ColorTable& table) {
+void blobsJson(std::ostringstream& json, const std::vector<TrackedBlob>& blobs, const ColorTable& table,
+               const FieldBoundary& field) {
   for (size_t i = 0; i < blobs.size(); ++i) {
     const Region& r = blobs[i].region;
+    // How far the blob's lowest point (below its centroid) lies above the field boundary.
+    const double above = field.found ? field.heightAbove(r.cx, r.bottom_at_cx) : NAN;
     json << (i ? "," : "") << "{\"id\":" << blobs[i].id << ",\"color\":" << jsonString(table.classes()[r.label - 1].name)
          << ",\"area\":" << r.area << ",\"cx\":" << number(r.cx) << ",\"cy\":" << number(r.cy) << ",\"left\":" << r.left
          << ",\"top\":" << r.top << ",\"right\":" << r.right << ",\"bottom\":" << r.bottom << ",\"bottom_at_cx\":" << r.bottom_at_cx
-         << ",\"angle\":" << number(r.angle) << "}";
+         << ",\"angle\":" << number(r.angle) << ",\"above_field_px\":" << number(above) << "}";
   }
+}
+
+void fieldJson(std::ostringstream& json, const FieldResult& field) {
+  const FieldBoundary& b = field.boundary;
+  json << "{\"found\":" << (b.found ? "true" : "false") << ",\"confidence\":" << number(b.confidence) << ",\"points\":[";
+  for (size_t i = 0; i < b.polyline.size(); ++i) {
+    json << (i ? "," : "") << "[" << number(b.polyline[i].x) << "," << number(b.polyline[i].y) << "]";
+  }
+  json << "]}";
 }
 
 void linesJson(std::ostringstream& json, const std::vector<DetectedLine>& lines) {
@@ -78,15 +90,18 @@ std::string jsonString(const std::string& s) {
 }
 
 std::string detectionJson(const std::string& file, int width, int height, const std::vector<TrackedBlob>& blobs,
-                          const ColorTable& table, const LandmarkResult& result, bool ranges_in_use) {
+                          const ColorTable& table, const LandmarkResult& result, const FieldResult& field,
+                          bool ranges_in_use) {
   std::ostringstream json;
   json << "{\"file\":" << jsonString(file) << ",\"width\":" << width << ",\"height\":" << height << ",\"blobs\":[";
-  blobsJson(json, blobs, table);
+  blobsJson(json, blobs, table, field.boundary);
   json << "],\"lines\":[";
   linesJson(json, result.lines);
   json << "],\"line_budget_exhausted\":" << (result.hough.budget_exhausted ? "true" : "false")
        << ",\"edge_objects_skipped\":" << result.hough.objects_skipped << ",\"horizon\":";
   horizonJson(json, result.horizon);
+  json << ",\"field_boundary\":";
+  fieldJson(json, field);
   if (ranges_in_use) {
     json << ",\"ranges\":[";
     rangesJson(json, table.classes());

@@ -1,7 +1,7 @@
 // One camera stream through the pipeline's core, frame after frame, as the nodelets run it
 // without ROS: the Tracker's ColorTracker with the current colour table, the
-// Landmark's LandmarkDetector (on the 5x5 Sobel the EdgeDetector computes) and its
-// ColorLearningLoop; ranges the loop publishes replace the table from the next frame on, as
+// Landmark's LandmarkDetector (on the 5x5 Sobel the EdgeDetector computes), the field stage
+// (FieldDetector: field colour and boundary) and its ColorLearningLoop; ranges the loop publishes replace the table from the next frame on, as
 // color_ranges does in the pipeline. Used by rle_vision_detect --sequence and make eval.
 #pragma once
 
@@ -11,6 +11,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "rle_vision/field/field_detector.h"
 #include "rle_vision/learning/color_learning_loop.h"
 #include "rle_vision/color/color_table.h"
 #include "rle_vision/tracking/color_tracker.h"
@@ -32,6 +33,7 @@ class CameraStream {
   struct Frame {
     std::vector<TrackedBlob> blobs;
     LandmarkResult landmarks;
+    FieldResult field;
     std::shared_ptr<const ColorTable> table;  // the ranges the blobs were found with
     std::string ignored_ranges;  // why learned ranges could not be used ("" when they could)
   };
@@ -45,6 +47,7 @@ class CameraStream {
   ColorLearningLoop loop_;
   ColorTracker tracker_;
   LandmarkDetector detector_;
+  FieldDetector field_;
 };
 
 }  // namespace rle_vision

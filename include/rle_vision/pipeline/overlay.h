@@ -12,6 +12,7 @@
 #include "rle_vision/landmark/horizon_finder.h"
 #include "rle_vision/color/pixel_format.h"
 #include "rle_vision/landmark/detected_line.h"
+#include "rle_vision/field/field_boundary.h"
 
 namespace rle_vision {
 
@@ -31,5 +32,8 @@ void drawLearning(cv::Mat* canvas, const std::vector<ColorLearner::Measurement>&
 // Lines in green, the horizon in thick cyan with its roll and pitch (rad; pitch may be NaN).
 void drawLandmarks(cv::Mat* canvas, const std::vector<DetectedLine>& lines, const HorizonEstimate& horizon,
                    double roll, double pitch);
+
+// The field boundary as a thick orange polyline with its confidence (or "no field boundary").
+void drawFieldBoundary(cv::Mat* canvas, const FieldBoundary& boundary);
 
 }  // namespace rle_vision

@@ -12,6 +12,7 @@ void CameraStream::process(const cv::Mat& bgr, double stamp_s, Frame* frame) {
   frame->ignored_ranges.clear();
   tracker_.process(bgr, PixelFormat::BGR8, *table_, stamp_s, &frame->blobs);
   detector_.detectInImage(bgr, options_.landmark, &frame->landmarks);
+  field_.detect(bgr, &frame->field);
   const ColorLearningLoop::Step step =
       options_.loop.enabled ? loop_.learn(bgr, frame->landmarks, detector_.edgeObjects(), stamp_s, stamp_s,
                                           options_.learning, options_.loop.publish_period_s)

@@ -1,0 +1,62 @@
+// The floor's colour, found and kept by the package itself: the paper's colour-update loop
+// applied to the largest object in view. Seeded from the dominant colour at the bottom of the
+// view (where a robot's camera sees the floor it stands on), then re-measured on each frame's
+// field and blended in, so that it follows the light.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include "rle_vision/color/color_class.h"
+
+namespace rle_vision {
+
+struct FieldColorOptions {
+  double seed_band_share = 0.5;   // bottom share of the rows the field colour is seeded from
+  int chroma_bin = 4;             // U and V histogram bin (levels): the mode's resolution
+  double range_sigmas = 3.0;      // the range: median +- this many robust standard deviations
+  double min_half_width = 6.0;    // ... at least this many levels either side (noise, JPEG)
+  double min_share = 0.3;         // the mode must cover this share of the band: else no floor
+  double blend = 0.3;             // an update moves the range this far towards the new one
+};
+
+struct FieldColor {
+  bool found = false;
+  ColorClass range;   // "field", in YUV (source "learned")
+  double share = 0;   // share of the measured pixels inside the range
+};
+
+// The YUV (OpenCV COLOR_BGR2YUV) statistics of a pixel set: medians and robust spreads.
+struct ChannelStats {
+  double median[3] = {0, 0, 0};
+  double sigma[3] = {0, 0, 0};  // 1.4826 x median absolute deviation
+  size_t pixels = 0;
+};
+
+class FieldColorModel {
+ public:
+  explicit FieldColorModel(const FieldColorOptions& options = FieldColorOptions()) : options_(options) {}
+
+  // The dominant colour of the bottom band of `yuv` (CV_8UC3, YUV): the mode of its chroma
+  // histogram, widened to the pixels around it by their robust spread (twice, so the range
+  // settles on the mode's own pixels). Not found when the mode covers less than min_share.
+  FieldColor seed(const cv::Mat& yuv) const;
+
+  // Re-measures the range on `field_mask` (CV_8UC1, non-zero: this frame's field, e.g. below
+  // the field boundary and inside the current range grown by the spread) and blends it in.
+  FieldColor update(const FieldColor& current, const cv::Mat& yuv, const cv::Mat& field_mask) const;
+
+  // Pixels of `yuv` inside the range (CV_8UC1, 255 / 0).
+  static cv::Mat mask(const cv::Mat& yuv, const ColorClass& range);
+
+  const FieldColorOptions& options() const { return options_; }
+
+ private:
+  ColorClass rangeFrom(const ChannelStats& stats) const;
+
+  FieldColorOptions options_;
+};
+
+// Converts a BGR image (CV_8UC3) to the package's YUV (bit-exact with cv::cvtColor).
+cv::Mat fieldYuv(const cv::Mat& bgr);
+
+}  // namespace rle_vision

@@ -1,0 +1,178 @@
+// The field colour and the field boundary with known answers: a drawn hall (a carpet with white
+// lines, robots standing across its far edge, people and a wall beyond it) whose boundary is an
+// exact polyline; a frame with no floor; a light drift the field colour must follow.
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "rle_vision/field/field_boundary.h"
+#include "rle_vision/field/field_color.h"
+
+namespace rle_vision {
+namespace {
+
+constexpr int kWidth = 640, kHeight = 480;
+const cv::Scalar kCarpet(55, 135, 45);  // BGR
+
+// The true boundary: a corner of the field, left edge rising to the corner, right edge falling.
+double trueRow(double x) { return x <= 420 ? 210 - 70 * x / 420 : 140 + 80 * (x - 420) / 220; }
+
+// The hall at light gain `gain`: wall and stands above the field edge, the carpet below it with
+// white lines and +-10% blotches, two robots standing across the edge, a person's skin and a
+// green banner beyond it. `carpet` (if given): CV_8UC1, 255 where the carpet itself shows.
+cv::Mat drawHall(double gain, uint32_t seed, cv::Mat* carpet = nullptr) {
+  cv::Mat image(kHeight, kWidth, CV_8UC3, cv::Scalar(150, 170, 185));  // a beige wall
+  cv::rectangle(image, cv::Rect(0, 0, kWidth, 90), cv::Scalar(70, 60, 60), cv::FILLED);  // dark stands
+  std::vector<cv::Point> field = {{0, 210 * 16}, {420 * 16, 140 * 16}, {kWidth * 16, 220 * 16},
+                                  {kWidth * 16, kHeight * 16}, {0, kHeight * 16}};
+  cv::fillPoly(image, std::vector<std::vector<cv::Point>>{field}, kCarpet, cv::LINE_AA, 4);
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> px(0, kWidth - 1), py(0, kHeight - 1);
+  cv::Mat blotches(kHeight / 8, kWidth / 8, CV_32F);
+  cv::randu(blotches, 0.9, 1.1);
+  cv::resize(blotches, blotches, image.size(), 0, 0, cv::INTER_LINEAR);
+  for (int r = 0; r < kHeight; ++r) {
+    for (int x = 0; x < kWidth; ++x) {
+      if (r > trueRow(x) + 1) image.at<cv::Vec3b>(r, x) *= blotches.at<float>(r, x);
+    }
+  }
+  // Field lines: thin white stripes on the carpet (they must not end the field).
+  cv::line(image, {0, 330}, {kWidth, 300}, cv::Scalar(235, 235, 235), 6, cv::LINE_AA);
+  cv::line(image, {300, kHeight}, {380, 190}, cv::Scalar(235, 235, 235), 5, cv::LINE_AA);
+  // Robots standing on the field across its far edge (black bodies), a person beyond it.
+  cv::rectangle(image, cv::Rect(120, 120, 60, 110), cv::Scalar(30, 30, 30), cv::FILLED);
+  cv::rectangle(image, cv::Rect(500, 110, 50, 120), cv::Scalar(25, 25, 35), cv::FILLED);
+  cv::ellipse(image, {260, 110}, {14, 18}, 0, 0, 360, cv::Scalar(140, 170, 220), cv::FILLED);
+  cv::rectangle(image, cv::Rect(330, 40, 60, 20), cv::Scalar(50, 140, 50), cv::FILLED);  // a green banner
+  if (carpet) {
+    // Carpet pixels, 2 px clear of every other colour's edge (anti-aliased edges are mixtures).
+    cv::Mat is_carpet(image.size(), CV_8UC1, cv::Scalar(0));
+    cv::fillPoly(is_carpet, std::vector<std::vector<cv::Point>>{field}, cv::Scalar(255), cv::LINE_8, 4);
+    cv::line(is_carpet, {0, 330}, {kWidth, 300}, cv::Scalar(0), 6 + 4);
+    cv::line(is_carpet, {300, kHeight}, {380, 190}, cv::Scalar(0), 5 + 4);
+    cv::rectangle(is_carpet, cv::Rect(118, 118, 64, 114), cv::Scalar(0), cv::FILLED);
+    cv::rectangle(is_carpet, cv::Rect(498, 108, 54, 124), cv::Scalar(0), cv::FILLED);
+    cv::erode(is_carpet, *carpet, cv::Mat::ones(5, 5, CV_8U));
+  }
+  image.convertTo(image, -1, gain);
+  cv::Mat noise(image.size(), CV_16SC3);
+  cv::randn(noise, 0, 3);
+  cv::Mat noisy;
+  image.convertTo(noisy, CV_16SC3);
+  noisy += noise;
+  noisy.convertTo(image, CV_8UC3);
+  return image;
+}
+
+FieldBoundary boundaryOf(const cv::Mat& bgr, FieldColor* colour) {
+  const cv::Mat yuv = fieldYuv(bgr);
+  *colour = FieldColorModel().seed(yuv);
+  if (!colour->found) return FieldBoundary();
+  return FieldBoundaryFinder().find(FieldColorModel::mask(yuv, colour->range));
+}
+
+TEST(FieldBoundary, FollowsTheFieldsEdgeOverLinesRobotsAndPeople) {
+  FieldColor colour;
+  const FieldBoundary boundary = boundaryOf(drawHall(1.0, 1), &colour);
+  ASSERT_TRUE(colour.found);
+  EXPECT_GT(colour.share, 0.8);
+  ASSERT_TRUE(boundary.found);
+  EXPECT_GT(boundary.confidence, 0.6);
+  // A corner: two segments (three points), not more.
+  EXPECT_LE(boundary.polyline.size(), 4u);
+  std::vector<double> errors;
+  for (int x = 2; x < kWidth - 2; ++x) errors.push_back(std::fabs(boundary.rowAt(x) - trueRow(x)));
+  std::sort(errors.begin(), errors.end());
+  const double median = errors[errors.size() / 2], worst = errors.back();
+  for (const cv::Point2f& p : boundary.polyline) std::printf("(%.0f,%.1f;%.1f) ", p.x, p.y, trueRow(p.x));
+  std::printf("[ field ] boundary error: median %.2f px, worst %.2f px, confidence %.2f, %zu points\n", median, worst,
+              boundary.confidence, boundary.polyline.size());
+  EXPECT_LE(median, 2.0);
+  EXPECT_LE(worst, 6.0);
+  // Objects: a robot's feet on the field, the person's chin and the banner above the boundary.
+  EXPECT_LT(boundary.heightAbove(150, 229), 0);
+  EXPECT_GT(boundary.heightAbove(260, 128), 30);
+  EXPECT_GT(boundary.heightAbove(360, 60), 60);
+}
+
+TEST(FieldBoundary, NoneWithoutAFloorInView) {
+  // Four colours side by side at the bottom: no dominant floor colour.
+  cv::Mat wall(kHeight, kWidth, CV_8UC3, cv::Scalar(150, 170, 185));
+  const cv::Scalar colours[] = {{40, 40, 200}, {200, 60, 40}, {60, 200, 200}, {120, 120, 120}};
+  for (int i = 0; i < 4; ++i) cv::rectangle(wall, cv::Rect(i * kWidth / 4, 0, kWidth / 4, kHeight), colours[i], cv::FILLED);
+  FieldColor colour;
+  EXPECT_FALSE(boundaryOf(wall, &colour).found);
+  EXPECT_FALSE(colour.found);
+  EXPECT_NEAR(colour.share, 0.25, 0.05);
+  // A floor that fills the whole view has no edge in it: found, at the top row, or none; never
+  // a boundary in the middle of the view.
+  cv::Mat floor(kHeight, kWidth, CV_8UC3, kCarpet);
+  const FieldBoundary all_floor = boundaryOf(floor, &colour);
+  EXPECT_TRUE(colour.found);
+  if (all_floor.found) EXPECT_LE(all_floor.rowAt(kWidth / 2), 1.0);
+  // An empty or wrong image: nothing, no crash.
+  EXPECT_FALSE(FieldBoundaryFinder().find(cv::Mat()).found);
+  EXPECT_FALSE(FieldBoundaryFinder().find(cv::Mat(10, 10, CV_8UC3, cv::Scalar::all(0))).found);
+  EXPECT_FALSE(FieldColorModel().seed(cv::Mat()).found);
+}
+
+TEST(FieldColor, FollowsTheLightWhereAFixedRangeLosesTheFloor) {
+  // The light falls to 55% over 40 frames: the field colour, updated on each frame's field
+  // (below the boundary), keeps the carpet's pixels; the seed's fixed range does not.
+  FieldColorModel model;
+  FieldColor colour = model.seed(fieldYuv(drawHall(1.0, 1)));
+  ASSERT_TRUE(colour.found);
+  const FieldColor fixed = colour;
+  double worst_kept = 1, fixed_last = 1;
+  for (int frame = 1; frame <= 40; ++frame) {
+    cv::Mat floor;  // the carpet's own pixels, for scoring
+    const cv::Mat yuv = fieldYuv(drawHall(1.0 - 0.45 * frame / 40, frame + 1, &floor));
+    const FieldBoundary boundary = FieldBoundaryFinder().find(FieldColorModel::mask(yuv, colour.range));
+    ASSERT_TRUE(boundary.found) << "frame " << frame;
+    cv::Mat below(yuv.size(), CV_8UC1, cv::Scalar(0));
+    for (int x = 0; x < kWidth; ++x) {
+      const int top = std::max(0, static_cast<int>(std::ceil(boundary.rowAt(x))) + 2);
+      if (top < kHeight) below(cv::Range(top, kHeight), cv::Range(x, x + 1)) = 255;
+    }
+    colour = model.update(colour, yuv, below);
+    auto kept = [&](const ColorClass& range) {
+      cv::Mat in = FieldColorModel::mask(yuv, range) & floor;
+      return static_cast<double>(cv::countNonZero(in)) / cv::countNonZero(floor);
+    };
+    worst_kept = std::min(worst_kept, kept(colour.range));
+    fixed_last = kept(fixed.range);
+  }
+  std::printf("[ field ] through the drift: worst share of the floor kept %.3f (a fixed range at the end: %.3f)\n",
+              worst_kept, fixed_last);
+  EXPECT_GE(worst_kept, 0.95);
+  EXPECT_LT(fixed_last, 0.5);
+}
+
+TEST(FieldBoundary, OcclusionsBridgedCornersKept) {
+  // A dip three entries wide (a robot in front of the edge) is bridged by a window of five; the
+  // corner (a peak, rows 100 -> 80 -> 100) stays; a straight run simplifies to its ends.
+  std::vector<float> rows = {100, 96, 92, 140, 140, 140, 80, 84, 88, 92, 96, 100};
+  passOverOcclusions(&rows, 5);
+  const std::vector<float> expected = {100, 96, 92, 92, 92, 92, 80, 84, 88, 92, 96, 100};
+  EXPECT_EQ(rows, expected);
+  // A robot in front of a sloping edge: joined straight between its sides, not flat.
+  std::vector<float> sloped = {100, 98, 96, 140, 140, 140, 90, 88, 86};
+  bridgeOcclusions(&sloped, 5, 4.0);
+  const std::vector<float> joined = {100, 98, 96, 94.5f, 93, 91.5f, 90, 88, 86};
+  EXPECT_EQ(sloped, joined);
+  // A robot at the right end of the view (a step down, no far side) is held at the row before
+  // it; a continuous slope at the left end stays.
+  std::vector<float> end = {120, 112, 104, 100, 100, 100, 160, 161, 162};
+  bridgeEndOcclusions(&end, 16, 0.5);
+  const std::vector<float> held = {120, 112, 104, 100, 100, 100, 100, 100, 100};
+  EXPECT_EQ(end, held);
+  const std::vector<cv::Point2f> line = simplifyPolyline({{0, 0}, {10, 1}, {20, 2.2f}, {30, 3}}, 0.5);
+  ASSERT_EQ(line.size(), 2u);
+  EXPECT_EQ(line.back(), cv::Point2f(30, 3));
+}
+
+}  // namespace
+}  // namespace rle_vision
