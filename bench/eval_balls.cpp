@@ -25,12 +25,14 @@
 #include "rle_vision/io/horizon_model_file.h"
 #include "rle_vision/segment/segmenter.h"
 #include "rle_vision/io/yolo_labels.h"
+#include "rle_vision/field/field_detector.h"
 
 namespace {
 
 using namespace rle_vision;
 
 constexpr uint32_t kMinBlobArea = 20;
+constexpr double kOnFieldMarginPx = 10;  // the tracker's on_field_margin_px default
 
 struct Score {
   int frames = 0, balls = 0, found = 0, blobs = 0, on_ball = 0;
@@ -73,15 +75,24 @@ class BallMethods {
  public:
   explicit BallMethods(const ColorClass& ball) : table_({ball}), opencv_({ball}) {}
 
-  void ours(const cv::Mat& bgr, const std::vector<cv::Rect>& balls, Score* s) {
+  // `on_field`: the same blobs less those whose lowest point (below the centroid) lies more than
+  // the tracker's default margin above the field boundary (the field colour seeded on the frame).
+  void ours(const cv::Mat& bgr, const std::vector<cv::Rect>& balls, Score* s, Score* on_field) {
     const auto start = std::chrono::steady_clock::now();
     segmenter_.segment(bgr, PixelFormat::BGR8, table_, &regions_);
     const double ms = msSince(start);
-    std::vector<cv::Point2d> blobs;
+    std::vector<cv::Point2d> blobs, kept;
+    FieldResult field;
+    FieldDetector().detect(bgr, &field);
     for (const Region& r : regions_) {
-      if (r.area >= kMinBlobArea) blobs.emplace_back(r.cx, r.cy);
+      if (r.area < kMinBlobArea) continue;
+      blobs.emplace_back(r.cx, r.cy);
+      if (!field.boundary.found || field.boundary.heightAbove(r.cx, r.bottom_at_cx) <= kOnFieldMarginPx) {
+        kept.emplace_back(r.cx, r.cy);
+      }
     }
     score(blobs, balls, ms, s);
+    score(kept, balls, ms + field.ms, on_field);
   }
 
   void opencv(const cv::Mat& bgr, const std::vector<cv::Rect>& balls, Score* s) {
@@ -105,7 +116,7 @@ class BallMethods {
 
 struct FolderScores {
   std::string folder;
-  Score ours, opencv, learned;
+  Score ours, opencv, learned, on_field;
 };
 
 // The folder's images, in name order, as one camera stream at 30 Hz with colour learning
@@ -138,7 +149,7 @@ FolderScores evaluateFolder(const std::string& folder, int label_class, const Co
     const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
     if (bgr.empty()) throw std::runtime_error(path + ": cannot read the image");
     const std::vector<cv::Rect> balls = readYoloBoxes(yoloLabelPath(path), label_class, bgr.size());
-    methods->ours(bgr, balls, &f.ours);
+    methods->ours(bgr, balls, &f.ours, &f.on_field);
     methods->opencv(bgr, balls, &f.opencv);
   }
   return f;
@@ -160,13 +171,19 @@ std::string scoreJson(const Score& s) {
 }
 
 void printRow(const std::string& folder, const std::string& method, const Score& s) {
-  std::printf("%-12s %-44s %6d %7.1f %6d %9.1f %8.3f\n", folder.c_str(), method.c_str(), s.balls, s.recall(), s.blobs,
+  std::printf("%-12s %-48s %6d %7.1f %6d %9.1f %8.3f\n", folder.c_str(), method.c_str(), s.balls, s.recall(), s.blobs,
               s.precision(), s.msPerFrame());
 }
 
 const char* kOurs = "ours, calibrated range (fixed)";
 const char* kOpenCv = "OpenCV cvtColor+inRange+connectedComponents";
 const char* kLearned = "ours, --sequence, learning from blobs";
+const char* kOnField = "ours, calibrated range, on the field side only";
+
+// The methods in the order reported, and where each folder keeps its score.
+const std::vector<std::pair<const char*, Score FolderScores::*>> kMethods = {
+    {kOurs, &FolderScores::ours}, {kOpenCv, &FolderScores::opencv}, {kLearned, &FolderScores::learned},
+    {kOnField, &FolderScores::on_field}};
 
 void report(const std::string& calibrate_dir, const CalibrationResult& calibration,
             const std::vector<FolderScores>& folders, const std::string& json_path) {
@@ -174,9 +191,9 @@ void report(const std::string& calibrate_dir, const CalibrationResult& calibrati
   std::printf("class 'ball' calibrated on %s (%d boxes used, %d dropped): YUV [%d %d %d]..[%d %d %d]\n",
               calibrate_dir.c_str(), calibration.boxes_used, calibration.boxes_dropped, c.min[0], c.min[1], c.min[2],
               c.max[0], c.max[1], c.max[2]);
-  std::printf("%-12s %-44s %6s %7s %6s %9s %8s\n", "folder", "method", "balls", "recall", "blobs", "precision",
+  std::printf("%-12s %-48s %6s %7s %6s %9s %8s\n", "folder", "method", "balls", "recall", "blobs", "precision",
               "ms/frame");
-  Score ours_total, opencv_total, learned_total;
+  FolderScores total;
   std::ostringstream json;
   json << "{\n  \"calibrated_on\": \"" << calibrate_dir << "\",\n  \"machine\": \"" << bench::machineName()
        << "\",\n  \"date\": \"" << bench::todayUtc() << "\",\n  \"range\": {\"min\": [" << int(c.min[0]) << ", "
@@ -185,20 +202,20 @@ void report(const std::string& calibrate_dir, const CalibrationResult& calibrati
   for (size_t i = 0; i < folders.size(); ++i) {
     const FolderScores& f = folders[i];
     const std::string name = f.folder.substr(f.folder.find_last_of('/') + 1);
-    printRow(name, kOurs, f.ours);
-    printRow(name, kOpenCv, f.opencv);
-    printRow(name, kLearned, f.learned);
-    ours_total.add(f.ours);
-    opencv_total.add(f.opencv);
-    learned_total.add(f.learned);
-    json << (i ? "," : "") << "\n    \"" << name << "\": {\"" << kOurs << "\": " << scoreJson(f.ours) << ", \""
-         << kOpenCv << "\": " << scoreJson(f.opencv) << ", \"" << kLearned << "\": " << scoreJson(f.learned) << "}";
+    json << (i ? "," : "") << "\n    \"" << name << "\": {";
+    for (size_t m = 0; m < kMethods.size(); ++m) {
+      printRow(name, kMethods[m].first, f.*kMethods[m].second);
+      (total.*kMethods[m].second).add(f.*kMethods[m].second);
+      json << (m ? ", \"" : "\"") << kMethods[m].first << "\": " << scoreJson(f.*kMethods[m].second);
+    }
+    json << "}";
   }
-  printRow("all", kOurs, ours_total);
-  printRow("all", kOpenCv, opencv_total);
-  printRow("all", kLearned, learned_total);
-  json << "\n  },\n  \"methods\": {\"" << kOurs << "\": " << scoreJson(ours_total) << ", \"" << kOpenCv
-       << "\": " << scoreJson(opencv_total) << ", \"" << kLearned << "\": " << scoreJson(learned_total) << "}\n}\n";
+  json << "\n  },\n  \"methods\": {";
+  for (size_t m = 0; m < kMethods.size(); ++m) {
+    printRow("all", kMethods[m].first, total.*kMethods[m].second);
+    json << (m ? ", \"" : "\"") << kMethods[m].first << "\": " << scoreJson(total.*kMethods[m].second);
+  }
+  json << "}\n}\n";
   if (!json_path.empty()) {
     std::ofstream(json_path) << json.str();
     std::printf("wrote %s\n", json_path.c_str());

@@ -24,6 +24,7 @@ Blob blobToMsg(const TrackedBlob& blob, const std::string& color_name) {
   b.vy = static_cast<float>(blob.vy);
   b.angle = static_cast<float>(r.angle);
   b.age = blob.age;
+  b.above_field_px = std::nanf("");  // unknown until the tracker measures it against a boundary
   return b;
 }
 

@@ -23,6 +23,7 @@
 
 #include "color_range_conversions.h"
 #include "error_throttle.h"
+#include "field_conversions.h"
 #include "node_settings.h"
 #include "rle_vision/io/horizon_model_file.h"
 #include "image_conversions.h"
@@ -35,6 +36,7 @@
 #include "rle_vision/io/color_config.h"
 #include "rle_vision/learning/color_learning_loop.h"
 #include "rle_vision/color/color_table.h"
+#include "rle_vision/field/field_detector.h"
 #include "rle_vision/landmark/landmark_detector.h"
 #include "rle_vision/pipeline/overlay.h"
 #include "rle_vision/common/startup_wait.h"
@@ -77,17 +79,19 @@ class LandmarkNodelet : public nodelet::Nodelet {
   bool camera(const cv::Size& size, PinholeCamera* camera);
   void noteMissingColour(const std_msgs::Header& header, const cv::Size& size);
   void reportBudget(diagnostic_updater::DiagnosticStatusWrapper& status);
+  FieldResult publishField(const std_msgs::Header& header, const cv::Mat& bgr);
   void learnColours(const std_msgs::Header& header, const cv::Mat& bgr, const LandmarkResult& result,
                     const Settings& settings);
   void publishRanges(const std_msgs::Header& header, const std::vector<ColorClass>& classes);
   void publishDebug(const std_msgs::Header& header, const cv::Mat& bgr, const cv::Mat& edges,
-                    const LandmarkResult& result, const Horizon& horizon, bool learning);
+                    const LandmarkResult& result, const Horizon& horizon, const FieldBoundaryEstimate& field,
+                    bool learning);
 
   std::shared_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber sub_edges_, sub_image_;
   std::string edges_topic_;  // for the worker's log messages: connectCb may replace sub_edges_
   ros::Subscriber sub_info_, sub_resume_;
-  ros::Publisher pub_lines_, pub_horizon_, pub_markers_, pub_ranges_;
+  ros::Publisher pub_lines_, pub_horizon_, pub_field_, pub_markers_, pub_ranges_;
   image_transport::Publisher pub_debug_;
   std::mutex connect_mutex_;
   LandmarkSettings startup_;  // read once at start
@@ -125,10 +129,14 @@ class LandmarkNodelet : public nodelet::Nodelet {
   // in all, and the edge objects the last such frame skipped.
   std::atomic<int> frames_over_budget_{0}, frames_over_budget_total_{0};
   std::atomic<uint64_t> objects_skipped_{0};
+  // The field stage's last frame, for diagnostics.
+  std::atomic<bool> field_found_{false};
+  std::atomic<double> field_confidence_{0}, field_ms_{0};
   std::atomic<bool> resume_taken_{false};
 
   // Used by the worker only.
   LandmarkDetector detector_;
+  FieldDetector field_detector_;
   std::unique_ptr<ColorLearningLoop> learning_loop_;
   bool warned_no_camera_info_ = false;
   cv::Mat bgr_;  // the colour image converted to BGR when it is not already
@@ -176,6 +184,9 @@ void LandmarkNodelet::onInit() {
     s.add("colour ranges age (s)", published > 0 ? ros::WallTime::now().toSec() - published : -1.0);
     s.add("frames without a colour image of their stamp", frames_without_colour_.load());
     reportBudget(s);
+    s.add("field boundary found (last frame)", field_found_.load() ? "yes" : "no");
+    s.add("field boundary confidence (last frame)", field_confidence_.load());
+    s.add("field stage time (last frame, ms)", field_ms_.load());
   });
   diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
 
@@ -199,6 +210,7 @@ void LandmarkNodelet::advertiseAndSubscribe(ros::NodeHandle& nh, ros::NodeHandle
       [this](const image_transport::SingleSubscriberPublisher&) { connectCb(); };
   pub_lines_ = nh.advertise<LineArray>("lines", 5, connect_cb, connect_cb);
   pub_horizon_ = nh.advertise<Horizon>("horizon", 5, connect_cb, connect_cb);
+  pub_field_ = nh.advertise<FieldBoundary>("field_boundary", 5, connect_cb, connect_cb);
   pub_markers_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 2, connect_cb, connect_cb);
   pub_debug_ = image_transport::ImageTransport(pnh).advertise("debug_image", 1, image_connect_cb, image_connect_cb);
   pub_ranges_ = nh.advertise<ColorRangeArray>("color_ranges", 1, connect_cb, connect_cb, ros::VoidConstPtr(), /*latch=*/true);
@@ -247,6 +259,7 @@ void LandmarkNodelet::connectCb() {
   // Learning feeds the tracker (a color_ranges subscriber) even when nobody watches lines.
   const bool feeding = learning && pub_ranges_.getNumSubscribers() > 0;
   const bool wanted = feeding || pub_lines_.getNumSubscribers() > 0 || pub_horizon_.getNumSubscribers() > 0 ||
+                      pub_field_.getNumSubscribers() > 0 ||
                       pub_markers_.getNumSubscribers() > 0 || pub_debug_.getNumSubscribers() > 0;
   // The colour image of each edge image feeds the horizon's region evidence, learning and
   // the overlay.
@@ -302,11 +315,14 @@ void LandmarkNodelet::process(const sensor_msgs::ImageConstPtr& msg) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   pub_lines_.publish(lines);
   pub_horizon_.publish(horizon);
+  const FieldResult field = publishField(msg->header, bgr);
   learnColours(msg->header, bgr, result, s);
   if (have_camera && pub_markers_.getNumSubscribers() > 0) {
     pub_markers_.publish(landmarkMarkers(msg->header, result, camera_model));
   }
-  if (pub_debug_.getNumSubscribers() > 0) publishDebug(msg->header, bgr, edges, result, *horizon, s.loop.enabled);
+  if (pub_debug_.getNumSubscribers() > 0) {
+    publishDebug(msg->header, bgr, edges, result, *horizon, field.boundary, s.loop.enabled);
+  }
   stats_.addFrame(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
                   threadCpuMs() - cpu_start_ms);
 }
@@ -435,8 +451,20 @@ void LandmarkNodelet::publishRanges(const std_msgs::Header& header, const std::v
       std::count_if(classes.begin(), classes.end(), [](const ColorClass& c) { return c.source == "learned"; }));
 }
 
+FieldResult LandmarkNodelet::publishField(const std_msgs::Header& header, const cv::Mat& bgr) {
+  // Where the floor ends, from the colour image (none without one: the edges carry no colour).
+  FieldResult field;
+  if (!bgr.empty()) field_detector_.detect(bgr, &field);
+  field_found_ = field.boundary.found;
+  field_confidence_ = field.boundary.confidence;
+  field_ms_ = field.ms;
+  pub_field_.publish(fieldBoundaryToMsg(header, field.boundary));
+  return field;
+}
+
 void LandmarkNodelet::publishDebug(const std_msgs::Header& header, const cv::Mat& bgr, const cv::Mat& edges,
-                                   const LandmarkResult& result, const Horizon& horizon, bool learning) {
+                                   const LandmarkResult& result, const Horizon& horizon,
+                                   const FieldBoundaryEstimate& field, bool learning) {
   cv::Mat canvas;
   if (!bgr.empty()) {
     canvas = bgr.clone();
@@ -444,6 +472,7 @@ void LandmarkNodelet::publishDebug(const std_msgs::Header& header, const cv::Mat
     cv::cvtColor(edges, canvas, cv::COLOR_GRAY2BGR);
   }
   drawLandmarks(&canvas, result.lines, result.horizon, horizon.roll, horizon.pitch);
+  drawFieldBoundary(&canvas, field);
   if (learning) {
     drawLearning(&canvas, learning_loop_->learner().lastMeasurements());
     drawColorSwatches(&canvas, ColorTable(learning_loop_->learner().classes()));

@@ -28,6 +28,7 @@
 #include "color_range_conversions.h"
 #include "image_conversions.h"
 #include "error_throttle.h"
+#include "field_conversions.h"
 #include "node_settings.h"
 #include "tracker_conversions.h"
 #include "inline_callback_queue.h"
@@ -37,6 +38,7 @@
 #include "rle_vision/CmvisionBlobs.h"
 #include "rle_vision/ColorRangeArray.h"
 #include "rle_vision/TrackerConfig.h"
+#include "rle_vision/field/on_field.h"
 #include "rle_vision/io/color_config.h"
 #include "rle_vision/tracking/color_tracker.h"
 #include "rle_vision/common/latency_histogram.h"
@@ -56,6 +58,9 @@ class TrackerNodelet : public nodelet::Nodelet {
   void connectCb();
   void imageCb(const sensor_msgs::ImageConstPtr& msg);
   void colorRangesCb(const ColorRangeArrayConstPtr& msg);
+  void fieldBoundaryCb(const FieldBoundaryConstPtr& msg);
+  FieldBoundaryEstimate fieldBoundaryAt(const ros::Time& stamp);
+  void setUpOnField(ros::NodeHandle& nh, const std::string& classes, double margin_px, double max_age_s);
   void reconfigureCb(TrackerConfig& config, uint32_t level);
   void publishActiveRanges(const ColorTable& table, const ros::Time& stamp);
   void reportDiagnostics(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -72,7 +77,7 @@ class TrackerNodelet : public nodelet::Nodelet {
   std::thread frame_thread_;
   std::shared_ptr<image_transport::ImageTransport> it_;
   image_transport::Subscriber sub_image_;
-  ros::Subscriber sub_ranges_;
+  ros::Subscriber sub_ranges_, sub_field_;
   ros::Publisher pub_blobs_, pub_cmvision_blobs_;
   ros::Publisher pub_active_ranges_;
   image_transport::Publisher pub_debug_;
@@ -103,9 +108,18 @@ class TrackerNodelet : public nodelet::Nodelet {
   LatencyHistogram latency_;
   RegionLoadMonitor region_load_;  // frames with more regions than the tracker keeps
 
+  // The latest field boundary (from the Landmark node) and which blobs must lie on its field side.
+  std::mutex field_mutex_;
+  FieldBoundaryEstimate field_;
+  ros::Time field_stamp_;
+  std::unique_ptr<OnFieldFilter> on_field_;
+  double field_max_age_s_ = 0.5;
+  std::atomic<uint64_t> dropped_off_field_{0}, dropped_off_field_total_{0};
+
   // Used only by imageCb, which ROS calls serially.
   ColorTracker color_tracker_;
   std::vector<TrackedBlob> blobs_;
+  std::vector<double> above_field_;
 };
 
 TrackerNodelet::~TrackerNodelet() {
@@ -180,6 +194,7 @@ void TrackerNodelet::onInit() {
   }
   NODELET_INFO("loaded %d colour classes from %s", table_.load()->size(), colors_file.c_str());
   table_since_ = ros::WallTime::now();
+  setUpOnField(nh, settings.on_field_classes, settings.on_field_margin_px, settings.field_boundary_max_age_s);
 
   for (const std::string& problem : startupParamProblems<TrackerConfig>(pnh)) NODELET_WARN("%s", problem.c_str());
   reconfigure_server_ = std::make_shared<dynamic_reconfigure::Server<TrackerConfig>>(pnh);
@@ -254,6 +269,30 @@ void TrackerNodelet::colorRangesCb(const ColorRangeArrayConstPtr& msg) {
   publishActiveRanges(*table, msg->header.stamp);
 }
 
+void TrackerNodelet::setUpOnField(ros::NodeHandle& nh, const std::string& classes, double margin_px, double max_age_s) {
+  on_field_ = std::make_unique<OnFieldFilter>(classes, margin_px);
+  field_max_age_s_ = max_age_s;
+  for (const std::string& name : on_field_->unknownClasses(*table_.load())) {
+    NODELET_WARN("~on_field_classes names '%s', which is not one of the colour classes: check the spelling", name.c_str());
+  }
+  // Every blob gets its height above the field (Blob.above_field_px) when a boundary is known.
+  sub_field_ = nh.subscribe("field_boundary", 1, &TrackerNodelet::fieldBoundaryCb, this);
+}
+
+void TrackerNodelet::fieldBoundaryCb(const FieldBoundaryConstPtr& msg) {
+  const FieldBoundaryEstimate boundary = fieldBoundaryFromMsg(*msg);
+  std::lock_guard<std::mutex> lock(field_mutex_);
+  field_ = boundary;
+  field_stamp_ = msg->header.stamp;
+}
+
+FieldBoundaryEstimate TrackerNodelet::fieldBoundaryAt(const ros::Time& stamp) {
+  // The landmark path runs behind the tracker: the newest boundary is a frame or a few old.
+  std::lock_guard<std::mutex> lock(field_mutex_);
+  if (field_stamp_.isZero() || std::fabs((stamp - field_stamp_).toSec()) > field_max_age_s_) return {};
+  return field_;
+}
+
 void TrackerNodelet::publishActiveRanges(const ColorTable& table, const ros::Time& stamp) {
   ColorRangeArray msg;
   msg.header.stamp = stamp;
@@ -292,13 +331,18 @@ void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
       color_tracker_.regionCounts(), *table, limits);
   if (!overload.empty()) NODELET_WARN("%s", overload.c_str());
 
+  const int off_field = on_field_->apply(fieldBoundaryAt(msg->header.stamp), *table, &blobs_, &above_field_);
+  dropped_off_field_ += off_field;
+  dropped_off_field_total_ += off_field;
+
   auto out = boost::make_shared<BlobArray>();
   out->header = msg->header;
   out->image_width = msg->width;
   out->image_height = msg->height;
   out->blobs.reserve(blobs_.size());
-  for (const TrackedBlob& blob : blobs_) {
-    out->blobs.push_back(blobToMsg(blob, table->classes()[blob.region.label - 1].name));
+  for (size_t i = 0; i < blobs_.size(); ++i) {
+    out->blobs.push_back(blobToMsg(blobs_[i], table->classes()[blobs_[i].region.label - 1].name));
+    out->blobs.back().above_field_px = static_cast<float>(above_field_[i]);
   }
   out->processing_time_ms = static_cast<float>(clock.elapsedMs());
   const double cpu_ms = clock.cpuMs();  // the same span as processing_time_ms
@@ -336,6 +380,8 @@ void TrackerNodelet::reportDiagnostics(diagnostic_updater::DiagnosticStatusWrapp
     }
   }
   reportRegionLoad(status);
+  status.add("blobs dropped beyond the field boundary (since last report)", dropped_off_field_.exchange(0));
+  status.add("blobs dropped beyond the field boundary (total)", dropped_off_field_total_.load());
   std::lock_guard<std::mutex> lock(table_info_mutex_);
   status.add("colour classes", table_.load()->size());
   status.add("colour ranges from", table_source_);

@@ -15,7 +15,7 @@ std::string number(double v) {
 }
 
 void blobsJson(std::ostringstream& json, const std::vector<TrackedBlob>& blobs, const ColorTable& table,
-               const FieldBoundary& field) {
+               const FieldBoundaryEstimate& field) {
   for (size_t i = 0; i < blobs.size(); ++i) {
     const Region& r = blobs[i].region;
     // How far the blob's lowest point (below its centroid) lies above the field boundary.
@@ -28,7 +28,7 @@ void blobsJson(std::ostringstream& json, const std::vector<TrackedBlob>& blobs, 
 }
 
 void fieldJson(std::ostringstream& json, const FieldResult& field) {
-  const FieldBoundary& b = field.boundary;
+  const FieldBoundaryEstimate& b = field.boundary;
   json << "{\"found\":" << (b.found ? "true" : "false") << ",\"confidence\":" << number(b.confidence) << ",\"points\":[";
   for (size_t i = 0; i < b.polyline.size(); ++i) {
     json << (i ? "," : "") << "[" << number(b.polyline[i].x) << "," << number(b.polyline[i].y) << "]";

@@ -39,7 +39,8 @@ struct FieldBoundaryOptions {
   double min_saturation_ratio = 0.33;  // greyer pixels (chroma vs the floor's) are never floor
 };
 
-struct FieldBoundary {
+// (The message is FieldBoundary.msg; this is the estimate it carries, as HorizonEstimate is Horizon.msg's.)
+struct FieldBoundaryEstimate {
   bool found = false;
   double confidence = 0;               // share of the columns with field supporting the polyline
   std::vector<cv::Point2f> polyline;   // left to right, x from the first column to the last
@@ -57,17 +58,17 @@ class FieldBoundaryFinder {
   explicit FieldBoundaryFinder(const FieldBoundaryOptions& options = FieldBoundaryOptions()) : options_(options) {}
 
   // `field_mask`: CV_8UC1, non-zero where the field colour is.
-  FieldBoundary find(const cv::Mat& field_mask) const;
+  FieldBoundaryEstimate find(const cv::Mat& field_mask) const;
   // From a YUV image (CV_8UC3) and the field colour (a YUV range): within the range's half
   // widths of the colour followed up the column so far (moving by follow_rate per field pixel),
   // and at least min_saturation_ratio of the range centre's saturation.
-  FieldBoundary find(const cv::Mat& yuv, const ColorClass& field) const;
+  FieldBoundaryEstimate find(const cv::Mat& yuv, const ColorClass& field) const;
 
   const FieldBoundaryOptions& options() const { return options_; }
 
  private:
   template <class ColumnTop>
-  FieldBoundary fromColumns(const cv::Size& size, ColumnTop column_top) const;
+  FieldBoundaryEstimate fromColumns(const cv::Size& size, ColumnTop column_top) const;
 
   FieldBoundaryOptions options_;
 };

@@ -12,7 +12,7 @@ namespace rle_vision {
 
 struct FieldResult {
   FieldColor colour;        // the range used on this frame (and its share of the floor)
-  FieldBoundary boundary;
+  FieldBoundaryEstimate boundary;
   bool reseeded = false;    // the colour was seeded on this frame
   double ms = 0;            // time of the stage
 };

@@ -34,6 +34,6 @@ void drawLandmarks(cv::Mat* canvas, const std::vector<DetectedLine>& lines, cons
                    double roll, double pitch);
 
 // The field boundary as a thick orange polyline with its confidence (or "no field boundary").
-void drawFieldBoundary(cv::Mat* canvas, const FieldBoundary& boundary);
+void drawFieldBoundary(cv::Mat* canvas, const FieldBoundaryEstimate& boundary);
 
 }  // namespace rle_vision

@@ -85,7 +85,7 @@ class FollowedFloor {
 
 }  // namespace
 
-double FieldBoundary::rowAt(double x) const {
+double FieldBoundaryEstimate::rowAt(double x) const {
   if (!found || polyline.empty()) return std::numeric_limits<double>::quiet_NaN();
   if (x <= polyline.front().x) return polyline.front().y;
   for (size_t i = 1; i < polyline.size(); ++i) {
@@ -185,15 +185,15 @@ std::vector<cv::Point2f> simplifyPolyline(const std::vector<cv::Point2f>& points
   return out;
 }
 
-FieldBoundary FieldBoundaryFinder::find(const cv::Mat& field_mask) const {
-  if (field_mask.empty() || field_mask.type() != CV_8UC1) return FieldBoundary();
+FieldBoundaryEstimate FieldBoundaryFinder::find(const cv::Mat& field_mask) const {
+  if (field_mask.empty() || field_mask.type() != CV_8UC1) return FieldBoundaryEstimate();
   return fromColumns(field_mask.size(), [&](int x, double* score) {
     return columnTop(field_mask, x, options_.non_field_penalty, score);
   });
 }
 
-FieldBoundary FieldBoundaryFinder::find(const cv::Mat& yuv, const ColorClass& field) const {
-  if (yuv.empty() || yuv.type() != CV_8UC3) return FieldBoundary();
+FieldBoundaryEstimate FieldBoundaryFinder::find(const cv::Mat& yuv, const ColorClass& field) const {
+  if (yuv.empty() || yuv.type() != CV_8UC3) return FieldBoundaryEstimate();
   const FollowedFloor floor(field, options_.follow_rate, options_.min_saturation_ratio);
   return fromColumns(yuv.size(), [&](int x, double* score) {
     return floor.columnTop(yuv, x, options_.non_field_penalty, score);
@@ -201,8 +201,8 @@ FieldBoundary FieldBoundaryFinder::find(const cv::Mat& yuv, const ColorClass& fi
 }
 
 template <class ColumnTop>
-FieldBoundary FieldBoundaryFinder::fromColumns(const cv::Size& size, ColumnTop column_top) const {
-  FieldBoundary result;
+FieldBoundaryEstimate FieldBoundaryFinder::fromColumns(const cv::Size& size, ColumnTop column_top) const {
+  FieldBoundaryEstimate result;
   const FieldBoundaryOptions& o = options_;
   const int step = std::max(1, o.column_step_px);
   const double min_score = o.min_field_share * size.height;

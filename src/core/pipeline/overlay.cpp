@@ -108,7 +108,7 @@ void drawLandmarks(cv::Mat* canvas, const std::vector<DetectedLine>& lines, cons
   cv::putText(*canvas, text, cv::Point(6, 16), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(255, 255, 0), 1, cv::LINE_AA);
 }
 
-void drawFieldBoundary(cv::Mat* canvas, const FieldBoundary& boundary) {
+void drawFieldBoundary(cv::Mat* canvas, const FieldBoundaryEstimate& boundary) {
   const cv::Scalar orange(0, 140, 255);
   if (!boundary.found) {
     cv::putText(*canvas, "no field boundary", cv::Point(6, 34), cv::FONT_HERSHEY_SIMPLEX, 0.45, orange, 1, cv::LINE_AA);

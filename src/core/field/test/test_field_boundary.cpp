@@ -10,6 +10,8 @@
 
 #include "rle_vision/field/field_boundary.h"
 #include "rle_vision/field/field_color.h"
+#include "rle_vision/field/on_field.h"
+#include "testing/test_helpers.h"
 
 namespace rle_vision {
 namespace {
@@ -67,16 +69,16 @@ cv::Mat drawHall(double gain, uint32_t seed, cv::Mat* carpet = nullptr) {
   return image;
 }
 
-FieldBoundary boundaryOf(const cv::Mat& bgr, FieldColor* colour) {
+FieldBoundaryEstimate boundaryOf(const cv::Mat& bgr, FieldColor* colour) {
   const cv::Mat yuv = fieldYuv(bgr);
   *colour = FieldColorModel().seed(yuv);
-  if (!colour->found) return FieldBoundary();
+  if (!colour->found) return FieldBoundaryEstimate();
   return FieldBoundaryFinder().find(FieldColorModel::mask(yuv, colour->range));
 }
 
 TEST(FieldBoundary, FollowsTheFieldsEdgeOverLinesRobotsAndPeople) {
   FieldColor colour;
-  const FieldBoundary boundary = boundaryOf(drawHall(1.0, 1), &colour);
+  const FieldBoundaryEstimate boundary = boundaryOf(drawHall(1.0, 1), &colour);
   ASSERT_TRUE(colour.found);
   EXPECT_GT(colour.share, 0.8);
   ASSERT_TRUE(boundary.found);
@@ -110,7 +112,7 @@ TEST(FieldBoundary, NoneWithoutAFloorInView) {
   // A floor that fills the whole view has no edge in it: found, at the top row, or none; never
   // a boundary in the middle of the view.
   cv::Mat floor(kHeight, kWidth, CV_8UC3, kCarpet);
-  const FieldBoundary all_floor = boundaryOf(floor, &colour);
+  const FieldBoundaryEstimate all_floor = boundaryOf(floor, &colour);
   EXPECT_TRUE(colour.found);
   if (all_floor.found) EXPECT_LE(all_floor.rowAt(kWidth / 2), 1.0);
   // An empty or wrong image: nothing, no crash.
@@ -130,7 +132,7 @@ TEST(FieldColor, FollowsTheLightWhereAFixedRangeLosesTheFloor) {
   for (int frame = 1; frame <= 40; ++frame) {
     cv::Mat floor;  // the carpet's own pixels, for scoring
     const cv::Mat yuv = fieldYuv(drawHall(1.0 - 0.45 * frame / 40, frame + 1, &floor));
-    const FieldBoundary boundary = FieldBoundaryFinder().find(FieldColorModel::mask(yuv, colour.range));
+    const FieldBoundaryEstimate boundary = FieldBoundaryFinder().find(FieldColorModel::mask(yuv, colour.range));
     ASSERT_TRUE(boundary.found) << "frame " << frame;
     cv::Mat below(yuv.size(), CV_8UC1, cv::Scalar(0));
     for (int x = 0; x < kWidth; ++x) {
@@ -172,6 +174,42 @@ TEST(FieldBoundary, OcclusionsBridgedCornersKept) {
   const std::vector<cv::Point2f> line = simplifyPolyline({{0, 0}, {10, 1}, {20, 2.2f}, {30, 3}}, 0.5);
   ASSERT_EQ(line.size(), 2u);
   EXPECT_EQ(line.back(), cv::Point2f(30, 3));
+}
+
+TEST(OnFieldFilter, DropsRequiredClassesBeyondTheBoundaryOnly) {
+  const ColorTable table({test::makeClass("ball", ColorSpace::YUV, {{150, 60, 120}}, {{255, 120, 180}}),
+                          test::makeClass("robot", ColorSpace::YUV, {{0, 0, 0}}, {{60, 255, 255}})});
+  FieldBoundaryEstimate boundary;
+  boundary.found = true;
+  boundary.polyline = {{0, 100}, {200, 100}, {400, 60}};  // level, then rising to the right
+  auto blob = [](int label, double cx, int bottom) {
+    TrackedBlob b;
+    b.region.label = label;
+    b.region.cx = cx;
+    b.region.bottom_at_cx = bottom;
+    return b;
+  };
+  // Balls: on the field, 5 px above (within the 10-px margin), 20 px above (dropped), and on the
+  // rising part 10 px below it; a robot far above (not a required class: kept).
+  std::vector<TrackedBlob> blobs = {blob(1, 50, 120), blob(1, 60, 95), blob(1, 70, 80), blob(1, 300, 90),
+                                    blob(2, 80, 40)};
+  const OnFieldFilter filter(" ball , bal", 10.0);
+  EXPECT_EQ(filter.unknownClasses(table), std::vector<std::string>{"bal"});
+  std::vector<double> above;
+  EXPECT_EQ(filter.apply(boundary, table, &blobs, &above), 1);
+  ASSERT_EQ(blobs.size(), 4u);
+  ASSERT_EQ(above.size(), 4u);
+  EXPECT_DOUBLE_EQ(above[0], -20);
+  EXPECT_DOUBLE_EQ(above[1], 5);
+  EXPECT_EQ(blobs[2].region.cx, 300);
+  EXPECT_DOUBLE_EQ(above[2], -10);
+  EXPECT_DOUBLE_EQ(above[3], 60);
+  // Without a boundary nothing is dropped and nothing is known.
+  std::vector<TrackedBlob> again = {blob(1, 70, 80)};
+  EXPECT_EQ(filter.apply(FieldBoundaryEstimate(), table, &again, &above), 0);
+  ASSERT_EQ(again.size(), 1u);
+  EXPECT_TRUE(std::isnan(above[0]));
+  EXPECT_TRUE(OnFieldFilter("", 10).empty());
 }
 
 }  // namespace
