@@ -16,6 +16,7 @@
 #include "eval/benchmark_frame.h"
 #include "harness.h"
 #include "eval/line_matching.h"
+#include "rle_vision/field/field_detector.h"
 #include "rle_vision/io/horizon_model_file.h"
 #include "rle_vision/landmark/landmark_detector.h"
 
@@ -129,11 +130,14 @@ Values benchRealFrames(const std::vector<cv::Mat>& frames, const std::string& ke
   cv::Mat grey, blurred, canny;
   std::vector<cv::Vec4f> segments;
   std::vector<cv::Vec4i> int_segments;
-  std::vector<double> ours_ms, sobel_ms, objects_ms, hough_ms, horizon_ms, fld_ms, lsd_ms, houghp_ms;
+  std::vector<double> ours_ms, sobel_ms, objects_ms, hough_ms, horizon_ms, fld_ms, lsd_ms, houghp_ms, field_ms;
   int budget_cut = 0;
+  FieldDetector field;  // as in a stream: the colour seeded once, then followed
+  FieldResult field_result;
   for (const cv::Mat& image : frames) {
     ours_ms.push_back(bench::medianMs([&] { detector.detectInImage(image, options, &result); }, 9, 2));
     budget_cut += result.hough.budget_exhausted;
+    field_ms.push_back(bench::medianMs([&] { field.detect(image, &field_result); }, 9, 2));
     sobel_ms.push_back(result.sobel_ms);
     objects_ms.push_back(result.objects_ms);
     hough_ms.push_back(result.hough_ms);
@@ -161,6 +165,7 @@ Values benchRealFrames(const std::vector<cv::Mat>& frames, const std::string& ke
   std::printf("  %-46s %8.3f / %.3f / %.3f / %.3f ms\n", "  Sobel / edge objects / Hough / horizon", median(sobel_ms),
               median(objects_ms), median(hough_ms), median(horizon_ms));
   std::printf("  %-46s %8d of %zu\n", "  frames whose line budget ran out", budget_cut, frames.size());
+  std::printf("  %-46s %8.3f ms\n", "field stage (colour followed, boundary)", median(field_ms));
   printPeer("cvtColor + FastLineDetector", fld_time, ours);
   printPeer("cvtColor + LSD", median(lsd_ms), ours);
   printPeer("cvtColor + Gauss + Canny + HoughLinesP", median(houghp_ms), ours);
@@ -175,7 +180,8 @@ Values benchRealFrames(const std::vector<cv::Mat>& frames, const std::string& ke
           {key + "frame_lsd_ms", median(lsd_ms)},
           {key + "frame_houghp_ms", median(houghp_ms)},
           {key + "ratio_to_fld", ours / fld_time},
-          {key + "frames_budget_cut", double(budget_cut)}};
+          {key + "frames_budget_cut", double(budget_cut)},
+          {key + "field_ms", median(field_ms)}};
 }
 
 // Everything measured on the simulator frames: per-frame medians of each method's time, and the

@@ -63,12 +63,18 @@ class FieldBoundaryFinder {
   // widths of the colour followed up the column so far (moving by follow_rate per field pixel),
   // and at least min_saturation_ratio of the range centre's saturation.
   FieldBoundaryEstimate find(const cv::Mat& yuv, const ColorClass& field) const;
+  // The same on the scanned columns alone (fieldYuvColumns: column j is image column
+  // first_x + j step_x), which is all the scan reads: a quarter of the conversion.
+  FieldBoundaryEstimate findInColumns(const cv::Mat& yuv_columns, const ColorClass& field, double first_x,
+                                      double step_x) const;
 
   const FieldBoundaryOptions& options() const { return options_; }
 
  private:
+  // column_top(j, &score): the top of scanned column j (image column first_x + j step).
   template <class ColumnTop>
-  FieldBoundaryEstimate fromColumns(const cv::Size& size, ColumnTop column_top) const;
+  FieldBoundaryEstimate fromColumns(int column_count, int row_count, double first_x, double step,
+                                    ColumnTop column_top) const;
 
   FieldBoundaryOptions options_;
 };

@@ -58,5 +58,8 @@ class FieldColorModel {
 
 // Converts a BGR image (CV_8UC3) to the package's YUV (bit-exact with cv::cvtColor).
 cv::Mat fieldYuv(const cv::Mat& bgr);
+// The same for image columns first_x, first_x + step_x, ... only (a narrow CV_8UC3 image): what
+// the field stage reads of a frame.
+cv::Mat fieldYuvColumns(const cv::Mat& bgr, int first_x, int step_x);
 
 }  // namespace rle_vision

@@ -187,31 +187,44 @@ std::vector<cv::Point2f> simplifyPolyline(const std::vector<cv::Point2f>& points
 
 FieldBoundaryEstimate FieldBoundaryFinder::find(const cv::Mat& field_mask) const {
   if (field_mask.empty() || field_mask.type() != CV_8UC1) return FieldBoundaryEstimate();
-  return fromColumns(field_mask.size(), [&](int x, double* score) {
-    return columnTop(field_mask, x, options_.non_field_penalty, score);
-  });
+  const int step = std::max(1, options_.column_step_px), first = step / 2;
+  return fromColumns((field_mask.cols - first + step - 1) / step, field_mask.rows, first, step,
+                     [&](int j, double* score) {
+                       return columnTop(field_mask, first + j * step, options_.non_field_penalty, score);
+                     });
 }
 
 FieldBoundaryEstimate FieldBoundaryFinder::find(const cv::Mat& yuv, const ColorClass& field) const {
   if (yuv.empty() || yuv.type() != CV_8UC3) return FieldBoundaryEstimate();
   const FollowedFloor floor(field, options_.follow_rate, options_.min_saturation_ratio);
-  return fromColumns(yuv.size(), [&](int x, double* score) {
-    return floor.columnTop(yuv, x, options_.non_field_penalty, score);
+  const int step = std::max(1, options_.column_step_px), first = step / 2;
+  return fromColumns((yuv.cols - first + step - 1) / step, yuv.rows, first, step, [&](int j, double* score) {
+    return floor.columnTop(yuv, first + j * step, options_.non_field_penalty, score);
+  });
+}
+
+FieldBoundaryEstimate FieldBoundaryFinder::findInColumns(const cv::Mat& yuv_columns, const ColorClass& field,
+                                                         double first_x, double step_x) const {
+  if (yuv_columns.empty() || yuv_columns.type() != CV_8UC3) return FieldBoundaryEstimate();
+  const FollowedFloor floor(field, options_.follow_rate, options_.min_saturation_ratio);
+  return fromColumns(yuv_columns.cols, yuv_columns.rows, first_x, step_x, [&](int j, double* score) {
+    return floor.columnTop(yuv_columns, j, options_.non_field_penalty, score);
   });
 }
 
 template <class ColumnTop>
-FieldBoundaryEstimate FieldBoundaryFinder::fromColumns(const cv::Size& size, ColumnTop column_top) const {
+FieldBoundaryEstimate FieldBoundaryFinder::fromColumns(int column_count, int row_count, double first_x, double step,
+                                                       ColumnTop column_top) const {
   FieldBoundaryEstimate result;
   const FieldBoundaryOptions& o = options_;
-  const int step = std::max(1, o.column_step_px);
-  const double min_score = o.min_field_share * size.height;
+  const double min_score = o.min_field_share * row_count;
   std::vector<double> xs, tops;
   int columns = 0;
-  for (int x = step / 2; x < size.width; x += step) {
+  for (int j = 0; j < column_count; ++j) {
     ++columns;
     double score = 0;
-    const double top = column_top(x, &score);
+    const double top = column_top(j, &score);
+    const double x = first_x + j * step;
     if (score < min_score) continue;
     xs.push_back(x);
     tops.push_back(top);

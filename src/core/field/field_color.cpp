@@ -76,6 +76,21 @@ bool inside(const ColorClass& range, uint8_t y, uint8_t u, uint8_t v) {
 
 cv::Mat fieldYuv(const cv::Mat& bgr) { return convertBgrImage(bgr, ColorSpace::YUV); }
 
+cv::Mat fieldYuvColumns(const cv::Mat& bgr, int first_x, int step_x) {
+  step_x = std::max(1, step_x);
+  const int columns = bgr.cols > first_x ? (bgr.cols - first_x + step_x - 1) / step_x : 0;
+  cv::Mat out(bgr.rows, columns, CV_8UC3);
+  for (int r = 0; r < bgr.rows; ++r) {
+    const uint8_t* in = bgr.ptr<uint8_t>(r) + 3 * first_x;
+    uint8_t* o = out.ptr<uint8_t>(r);
+    for (int j = 0; j < columns; ++j, in += 3 * step_x, o += 3) {
+      const Channels yuv = yuvFromRgb(in[2], in[1], in[0]);
+      o[0] = yuv[0], o[1] = yuv[1], o[2] = yuv[2];
+    }
+  }
+  return out;
+}
+
 ColorClass FieldColorModel::rangeFrom(const ChannelStats& stats) const {
   ColorClass range;
   range.name = "field";

@@ -1,6 +1,7 @@
 #include "rle_vision/field/on_field.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <sstream>
 

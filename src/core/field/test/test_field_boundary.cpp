@@ -10,6 +10,7 @@
 
 #include "rle_vision/field/field_boundary.h"
 #include "rle_vision/field/field_color.h"
+#include "rle_vision/field/field_detector.h"
 #include "rle_vision/field/on_field.h"
 #include "testing/test_helpers.h"
 
@@ -98,6 +99,29 @@ TEST(FieldBoundary, FollowsTheFieldsEdgeOverLinesRobotsAndPeople) {
   EXPECT_LT(boundary.heightAbove(150, 229), 0);
   EXPECT_GT(boundary.heightAbove(260, 128), 30);
   EXPECT_GT(boundary.heightAbove(360, 60), 60);
+}
+
+TEST(FieldDetector, AStreamSeedsOnceAndFindsTheEdgeFromTheScannedColumns) {
+  // The scanned columns' YUV is the full conversion's, column for column.
+  const cv::Mat hall = drawHall(1.0, 1);
+  const cv::Mat full = fieldYuv(hall), columns = fieldYuvColumns(hall, 2, 4);
+  ASSERT_EQ(columns.cols, kWidth / 4);
+  for (int j = 0; j < columns.cols; j += 7) {
+    EXPECT_EQ(cv::norm(full.col(2 + 4 * j), columns.col(j), cv::NORM_INF), 0) << "column " << j;
+  }
+  FieldDetector detector;
+  for (int frame = 0; frame < 5; ++frame) {
+    FieldResult result;
+    detector.detect(drawHall(1.0 - 0.02 * frame, frame + 1), &result);
+    EXPECT_EQ(result.reseeded, frame == 0);
+    ASSERT_TRUE(result.boundary.found) << "frame " << frame;
+    double worst = 0;
+    for (int x = 2; x < kWidth - 2; ++x) worst = std::max(worst, std::fabs(result.boundary.rowAt(x) - trueRow(x)));
+    EXPECT_LE(worst, 6.0) << "frame " << frame;
+  }
+  FieldResult none;
+  detector.detect(cv::Mat(), &none);
+  EXPECT_FALSE(none.boundary.found);
 }
 
 TEST(FieldBoundary, NoneWithoutAFloorInView) {
