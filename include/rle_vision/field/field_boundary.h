@@ -3,8 +3,8 @@
 // outdoors, and it tells objects on the field from the same colours beyond it.
 //
 // Per column, scanning up from the bottom, the top of the field is where the running score (+1 a
-// field pixel, -non_field_penalty any other) peaks, so field lines and short occlusions do not
-// end it but the stands do. Field pixels: a mask's, or (from a YUV image) those near the floor's
+// field pixel, 0 a field line's: brighter than the floor and less saturated, -non_field_penalty
+// any other) peaks, so field lines and short occlusions do not end it but the stands do. Field pixels: a mask's, or (from a YUV image) those near the floor's
 // colour as the scan follows it up the column: a floor's colour drifts across the view
 // (vignetting, a lamp's sheen on the far field), a wall's or a stand's differs at once; and
 // never a pixel far greyer than the floor (shade shrinks a floor's chroma towards grey, and a

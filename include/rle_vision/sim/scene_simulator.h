@@ -49,6 +49,12 @@ struct SceneConfig {
   double ground_texture_contrast = 0;
   double ground_texture_grain_m = 0.03;
   Channels sky_rgb{{150, 200, 240}};
+  // A field: the ground colour only inside x in [field_x_min_m, field_x_max_m], y in
+  // [field_y_min_m, field_y_max_m] (base frame at the start pose), surround_rgb outside (the
+  // hall's floor). Without one the ground colour runs to the horizon.
+  bool has_field = false;
+  double field_x_min_m = 0, field_x_max_m = 0, field_y_min_m = 0, field_y_max_m = 0;
+  Channels surround_rgb{{150, 120, 90}};
   // Lighting: gain and per-channel colour cast move linearly from start to end over
   // drift_duration_s, then hold (0 duration: no drift).
   double light_gain_start = 1.0, light_gain_end = 1.0;
@@ -101,6 +107,10 @@ struct SimFrame {
   std::vector<EdgeTruth> faint_edges;
   ImageLine horizon;
   bool horizon_visible = false;
+  // With a field: per image column, the topmost row whose pixel centre sees the field's floor
+  // (boxes in front of it not counted: the field boundary's exact position); NaN where the
+  // column sees none of it.
+  std::vector<float> field_top;
   CameraPose pose;
   double light_gain = 1.0;
 };

@@ -44,7 +44,8 @@ double columnTop(const cv::Mat& mask, int x, double penalty, double* score) {
 }
 
 // The floor followed up a column: a pixel within the range's half widths of the colour
-// followed so far is field, and moves that colour by follow_rate towards its own. Across a
+// followed so far is field, and moves that colour by follow_rate towards its own; a field line
+// is neutral. Across a
 // floor the colour drifts (vignetting, a lamp's sheen on the far field); a wall's or a stand's
 // differs at once. A pixel far less saturated than the floor's seed colour is never floor: in
 // shade a floor's chroma shrinks towards grey, and without that floor a scan could follow the
@@ -57,6 +58,7 @@ class FollowedFloor {
       half_[c] = 0.5 * (range.max[c] - range.min[c]);
     }
     const double seed_saturation = std::hypot(centre_[1] - 128, centre_[2] - 128);
+    seed_saturation2_ = seed_saturation * seed_saturation;
     min_saturation2_ = std::pow(min_saturation_ratio * seed_saturation, 2);
   }
   double columnTop(const cv::Mat& yuv, int x, double penalty, double* score) const {
@@ -71,7 +73,11 @@ class FollowedFloor {
       if (field) {
         for (int c = 0; c < 3; ++c) colour[c] += rate_ * (p[c] - colour[c]);
       }
-      running += field ? 1.0 : -penalty;
+      // A field line (brighter than the floor and less saturated: white, or white blurred into
+      // the floor at its edges) neither extends the field nor ends it: a strip of floor beyond
+      // an outer line still counts, and a white wall adds nothing.
+      const bool line = !field && p[0] > colour[0] + half_[0] && u * u + v * v < seed_saturation2_;
+      running += field ? 1.0 : line ? 0.0 : -penalty;
       if (running > best) best = running, top = r;
     }
     *score = best;
@@ -80,7 +86,7 @@ class FollowedFloor {
 
  private:
   double centre_[3], half_[3];
-  double rate_, min_saturation2_;
+  double rate_, seed_saturation2_, min_saturation2_;
 };
 
 }  // namespace
@@ -146,6 +152,11 @@ void bridgeOcclusions(std::vector<float>* rows, int window, double depth_px) {
     }
     int end = i;
     while (end < n && (*rows)[end] - opened[end] > depth_px) ++end;
+    // The dip's sides are smeared over `margin` columns (the median filter): join from beyond them.
+    const int margin = 2;
+    const int last_end = end;
+    i = std::max(0, i - margin);
+    end = std::min(n, end + margin);
     for (int k = i; k < end; ++k) {
       if (i == 0 || end == n) {
         (*rows)[k] = opened[k];  // at an end of the view: no column beyond it
@@ -154,7 +165,7 @@ void bridgeOcclusions(std::vector<float>* rows, int window, double depth_px) {
         (*rows)[k] = (1 - t) * (*rows)[i - 1] + t * (*rows)[end];
       }
     }
-    i = end;
+    i = std::max(end, last_end + 1);
   }
 }
 

@@ -41,6 +41,15 @@ void readWorld(const std::string& origin, const YAML::Node& root, SceneConfig* c
     c->ground_texture_grain_m = number(origin, texture, "grain_m", c->ground_texture_grain_m, 1e-4, 10);
   }
   c->sky_rgb = triple<uint8_t>(origin, root, "sky_rgb", c->sky_rgb, 0, 255, "integers 0..255");
+  if (const YAML::Node field = root["field"]) {
+    checkKeys(origin, field, {"x_min_m", "x_max_m", "y_min_m", "y_max_m", "surround_rgb"});
+    c->has_field = true;
+    c->field_x_min_m = number(origin, field, "x_min_m", -1.0, -1e4, 1e4);
+    c->field_x_max_m = number(origin, field, "x_max_m", 10.0, -1e4, 1e4);
+    c->field_y_min_m = number(origin, field, "y_min_m", -5.0, -1e4, 1e4);
+    c->field_y_max_m = number(origin, field, "y_max_m", 5.0, -1e4, 1e4);
+    c->surround_rgb = triple<uint8_t>(origin, field, "surround_rgb", c->surround_rgb, 0, 255, "integers 0..255");
+  }
   if (const YAML::Node light = root["lighting"]) {
     checkKeys(origin, light, {"gain_start", "gain_end", "cast_start_rgb", "cast_end_rgb", "drift_duration_s"});
     c->light_gain_start = number(origin, light, "gain_start", c->light_gain_start, 0, 10);
@@ -93,7 +102,8 @@ SceneBox readBox(const std::string& origin, const YAML::Node& node, size_t index
 SceneConfig parseSceneConfig(const std::string& source, const std::string& origin) {
   const YAML::Node root = parse(source, origin);
   if (!root.IsMap()) fail(origin, root, "a scene file must be a mapping (image:, camera:, boxes: ...)");
-  checkKeys(origin, root, {"image", "camera", "gait", "ground_rgb", "ground_texture", "sky_rgb", "lighting", "sensor", "boxes"});
+  checkKeys(origin, root, {"image", "camera", "gait", "ground_rgb", "ground_texture", "sky_rgb", "field", "lighting", "sensor",
+                              "boxes"});
   SceneConfig c;
   readCamera(origin, root, &c);
   readWorld(origin, root, &c);

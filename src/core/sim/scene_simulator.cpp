@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <Eigen/Geometry>
@@ -130,6 +131,9 @@ std::string validateSceneConfig(const SceneConfig& c) {
   }
   if (!finite(c.ground_texture_grain_m) || c.ground_texture_grain_m <= 0) return "ground_texture grain_m must be > 0";
   if (c.blur_sigma_px < 0 || c.blur_sigma_px > 20) return "blur_sigma_px must be in [0, 20]";
+  if (c.has_field && !(c.field_x_min_m < c.field_x_max_m && c.field_y_min_m < c.field_y_max_m)) {
+    return "field: x_min_m < x_max_m and y_min_m < y_max_m are needed";
+  }
   if (c.boxes.size() > 255u - SceneSimulator::kFirstBoxLabel) return "too many boxes (at most 253)";
   for (const SceneBox& b : c.boxes) {
     for (double v : {b.x_m, b.y_m, b.depth_m, b.width_m, b.height_m, b.yaw_deg, b.vx_mps, b.vy_mps,
@@ -317,6 +321,36 @@ void textureGround(const SceneConfig& config, const PinholeCamera& camera, const
   }
 }
 
+// With a field: the ground pixels whose ground point lies outside it take the surround's colour,
+// and each column's topmost field row is the field boundary's truth (labels: sky and ground only).
+void paintSurround(const SceneConfig& config, const PinholeCamera& camera, const View& view, const Lighting& light,
+                   SimFrame* frame) {
+  const Eigen::Matrix3d base_from_optical = view.optical_from_base.transpose();
+  const cv::Vec3b surround = [&] {
+    const cv::Scalar c = litBgr(config.surround_rgb, 1.0, light.gain, light.cast);
+    return cv::Vec3b(cv::saturate_cast<uint8_t>(c[0]), cv::saturate_cast<uint8_t>(c[1]), cv::saturate_cast<uint8_t>(c[2]));
+  }();
+  frame->field_top.assign(frame->image.cols, std::numeric_limits<float>::quiet_NaN());
+  for (int v = 0; v < frame->image.rows; ++v) {
+    const uint8_t* label = frame->labels.ptr<uint8_t>(v);
+    cv::Vec3b* pixel = frame->image.ptr<cv::Vec3b>(v);
+    for (int u = 0; u < frame->image.cols; ++u) {
+      if (label[u] != SceneSimulator::kGroundLabel) continue;
+      const Eigen::Vector3d d = base_from_optical * camera.ray(u, v);
+      if (d.z() >= -1e-12) continue;
+      const double t = -view.position.z() / d.z();
+      const double x = view.position.x() + t * d.x(), y = view.position.y() + t * d.y();
+      const bool inside = x >= config.field_x_min_m && x <= config.field_x_max_m && y >= config.field_y_min_m &&
+                          y <= config.field_y_max_m;
+      if (!inside) {
+        pixel[u] = surround;
+      } else if (std::isnan(frame->field_top[u])) {
+        frame->field_top[u] = static_cast<float>(v);
+      }
+    }
+  }
+}
+
 // Sky and ground, split exactly at the horizon: a pixel sees the sky when its ray points up.
 void paintSkyAndGround(const SceneConfig& config, const PinholeCamera& camera, const View& view, const Lighting& light,
                        const std::vector<float>& texture_lattice, SimFrame* frame) {
@@ -353,6 +387,7 @@ void paintSkyAndGround(const SceneConfig& config, const PinholeCamera& camera, c
       label_row.colRange(sky_begin, sky_end).setTo(SceneSimulator::kSkyLabel);
     }
   }
+  if (config.has_field) paintSurround(config, camera, view, light, frame);
   if (config.ground_texture_contrast > 0) textureGround(config, camera, view, texture_lattice.data(), frame);
 }
 

@@ -218,6 +218,39 @@ TEST(SceneSimulator, RejectsUnusableConfigurations) {
   scene = defaultScene();
   scene.boxes[0].height_m = 0;
   EXPECT_THROW(SceneSimulator{scene}, std::invalid_argument);
+  scene = defaultScene();
+  scene.has_field = true;
+  scene.field_x_min_m = 3;
+  scene.field_x_max_m = 2;  // an empty field
+  EXPECT_THROW(SceneSimulator{scene}, std::invalid_argument);
+}
+
+TEST(SceneSimulator, AFieldsFloorEndsWhereItsTruthSays) {
+  // Without a field no column has a field top; with one (its far edge below the horizon in
+  // every column), each column's top pixel is the carpet's and the one above it the hall's floor.
+  const SimFrame plain = SceneSimulator(defaultScene()).render(0, 0);
+  EXPECT_TRUE(plain.field_top.empty());
+  SceneConfig scene = defaultScene();
+  scene.boxes.clear();
+  scene.noise_sigma = 0;
+  scene.blur_sigma_px = 0;
+  scene.ground_texture_contrast = 0;
+  scene.has_field = true;
+  scene.field_x_min_m = -1;
+  scene.field_x_max_m = 4;
+  scene.field_y_min_m = -1.5;
+  scene.field_y_max_m = 1.5;
+  const SimFrame frame = SceneSimulator(scene).render(0, 0);
+  ASSERT_EQ(frame.field_top.size(), static_cast<size_t>(scene.width));
+  const cv::Vec3b carpet = frame.image.at<cv::Vec3b>(frame.image.rows - 1, frame.image.cols / 2);
+  const cv::Vec3b surround(scene.surround_rgb[2], scene.surround_rgb[1], scene.surround_rgb[0]);
+  for (int u = 0; u < scene.width; u += 16) {
+    ASSERT_FALSE(std::isnan(frame.field_top[u])) << "column " << u;
+    const int top = static_cast<int>(frame.field_top[u]);
+    EXPECT_EQ(frame.image.at<cv::Vec3b>(top, u), carpet) << "column " << u;
+    ASSERT_GT(top, 0);
+    EXPECT_EQ(frame.image.at<cv::Vec3b>(top - 1, u), surround) << "column " << u;
+  }
 }
 
 TEST(SceneSimulator, CameraInsideABoxDoesNotCrash) {
