@@ -12,7 +12,7 @@
 #    found and the share of labelled balls, robots and people it puts on the field side; writes
 #    eval_field.json.
 # The JSON goes to bench/measured/ (RECORD=1: bench/results/, and the docs' tables rewritten).
-# On the default data both are checked against bench/eval_floor.json (the best figures landed
+# On the default data all three are checked against bench/eval_floor.json (the best figures landed
 # so far: a regression fails; see scripts/check_eval_floor.py).
 set -euo pipefail
 source "$(dirname "$0")/env.sh"
@@ -42,9 +42,10 @@ if (( ${#folders[@]} >= 2 )); then
 else
   echo "[eval] no folders of YOLO-labelled frames under $balls_dir (two or more: one to calibrate, the others to score): balls not evaluated (EVAL_BALLS_DIR=...)"
 fi
-# The field boundary on the same robot frames, every date on its own (issue 29: no floor yet).
+# The field boundary on the same robot frames, every date on its own.
 if [[ -d "$negatives_dir" ]]; then
   "$WS/devel/lib/rle_vision/rle_vision_eval_field" --json "$RESULTS_DIR/eval_field.json" "$negatives_dir"
+  if [[ -z "${EVAL_NEGATIVES_DIR:-}" ]]; then checked+=(--field "$RESULTS_DIR/eval_field.json"); fi
 fi
 if (( ${#checked[@]} )); then
   python3 "$ROOT/scripts/check_eval_floor.py" "${checked[@]}" --floor "$ROOT/bench/eval_floor.json"
