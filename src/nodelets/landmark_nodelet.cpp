@@ -452,9 +452,11 @@ void LandmarkNodelet::publishRanges(const std_msgs::Header& header, const std::v
 }
 
 FieldResult LandmarkNodelet::publishField(const std_msgs::Header& header, const cv::Mat& bgr) {
-  // Where the floor ends, from the colour image (none without one: the edges carry no colour).
+  // Where the floor ends, from the colour image (none without one: the edges carry no colour);
+  // only while someone reads it (the tracker subscribes, the overlay draws it).
   FieldResult field;
-  if (!bgr.empty()) field_detector_.detect(bgr, &field);
+  const bool wanted = pub_field_.getNumSubscribers() > 0 || pub_debug_.getNumSubscribers() > 0;
+  if (wanted && !bgr.empty()) field_detector_.detect(bgr, &field);
   field_found_ = field.boundary.found;
   field_confidence_ = field.boundary.confidence;
   field_ms_ = field.ms;

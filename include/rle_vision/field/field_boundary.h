@@ -59,12 +59,11 @@ class FieldBoundaryFinder {
 
   // `field_mask`: CV_8UC1, non-zero where the field colour is.
   FieldBoundaryEstimate find(const cv::Mat& field_mask) const;
-  // From a YUV image (CV_8UC3) and the field colour (a YUV range): within the range's half
-  // widths of the colour followed up the column so far (moving by follow_rate per field pixel),
-  // and at least min_saturation_ratio of the range centre's saturation.
-  FieldBoundaryEstimate find(const cv::Mat& yuv, const ColorClass& field) const;
-  // The same on the scanned columns alone (fieldYuvColumns: column j is image column
-  // first_x + j step_x), which is all the scan reads: a quarter of the conversion.
+  // From the scanned columns' YUV (CV_8UC3, fieldYuvColumns: column j is image column
+  // first_x + j step_x; all the scan reads) and the field colour (a YUV range): field pixels lie
+  // within the range's half widths of the colour followed up the column so far (moving by
+  // follow_rate per field pixel) and at least min_saturation_ratio of the range centre's
+  // saturation.
   FieldBoundaryEstimate findInColumns(const cv::Mat& yuv_columns, const ColorClass& field, double first_x,
                                       double step_x) const;
 

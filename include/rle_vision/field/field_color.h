@@ -48,6 +48,9 @@ class FieldColorModel {
   // Pixels of `yuv` inside the range (CV_8UC1, 255 / 0).
   static cv::Mat mask(const cv::Mat& yuv, const ColorClass& range);
 
+  // The first row of the bottom band the colour is seeded from (seed_band_share of `rows`).
+  int bandStart(int rows) const;
+
   const FieldColorOptions& options() const { return options_; }
 
  private:

@@ -33,7 +33,7 @@ class FieldDetector {
   FieldColorModel model_;
   FieldBoundaryFinder finder_;
   FieldColor colour_;
-  cv::Mat columns_, mask_, below_;  // the scanned columns' YUV, their field mask, this frame's field
+  cv::Mat columns_, mask_, below_;  // the scanned columns' YUV, their bottom band's field mask, this frame's field
 };
 
 }  // namespace rle_vision

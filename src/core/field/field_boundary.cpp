@@ -205,15 +205,6 @@ FieldBoundaryEstimate FieldBoundaryFinder::find(const cv::Mat& field_mask) const
                      });
 }
 
-FieldBoundaryEstimate FieldBoundaryFinder::find(const cv::Mat& yuv, const ColorClass& field) const {
-  if (yuv.empty() || yuv.type() != CV_8UC3) return FieldBoundaryEstimate();
-  const FollowedFloor floor(field, options_.follow_rate, options_.min_saturation_ratio);
-  const int step = std::max(1, options_.column_step_px), first = step / 2;
-  return fromColumns((yuv.cols - first + step - 1) / step, yuv.rows, first, step, [&](int j, double* score) {
-    return floor.columnTop(yuv, first + j * step, options_.non_field_penalty, score);
-  });
-}
-
 FieldBoundaryEstimate FieldBoundaryFinder::findInColumns(const cv::Mat& yuv_columns, const ColorClass& field,
                                                          double first_x, double step_x) const {
   if (yuv_columns.empty() || yuv_columns.type() != CV_8UC3) return FieldBoundaryEstimate();

@@ -67,11 +67,6 @@ ColorClass grown(const ColorClass& range) {
   return g;
 }
 
-bool inside(const ColorClass& range, uint8_t y, uint8_t u, uint8_t v) {
-  return y >= range.min[0] && y <= range.max[0] && u >= range.min[1] && u <= range.max[1] && v >= range.min[2] &&
-         v <= range.max[2];
-}
-
 }  // namespace
 
 cv::Mat fieldYuv(const cv::Mat& bgr) { return convertBgrImage(bgr, ColorSpace::YUV); }
@@ -91,6 +86,10 @@ cv::Mat fieldYuvColumns(const cv::Mat& bgr, int first_x, int step_x) {
   return out;
 }
 
+int FieldColorModel::bandStart(int rows) const {
+  return std::min(rows - 1, static_cast<int>(std::floor(rows * (1.0 - options_.seed_band_share))));
+}
+
 ColorClass FieldColorModel::rangeFrom(const ChannelStats& stats) const {
   ColorClass range;
   range.name = "field";
@@ -108,7 +107,7 @@ ColorClass FieldColorModel::rangeFrom(const ChannelStats& stats) const {
 FieldColor FieldColorModel::seed(const cv::Mat& yuv) const {
   FieldColor result;
   if (yuv.empty() || yuv.type() != CV_8UC3) return result;
-  const int row0 = std::min(yuv.rows - 1, static_cast<int>(std::floor(yuv.rows * (1.0 - options_.seed_band_share))));
+  const int row0 = bandStart(yuv.rows);
   const int bin = std::max(1, options_.chroma_bin), bins = (255 / bin) + 1;
   // The chroma histogram's mode (counts summed over each bin's 3x3 neighbourhood).
   std::vector<uint32_t> chroma(static_cast<size_t>(bins) * bins, 0);
@@ -141,11 +140,11 @@ FieldColor FieldColorModel::seed(const cv::Mat& yuv) const {
   });
   ColorClass range = rangeFrom(stats);
   for (int round = 0; round < 4; ++round) {
-    stats = measure(yuv, row0, [&](uint8_t y, uint8_t u, uint8_t v, int, int) { return inside(range, y, u, v); });
+    stats = measure(yuv, row0, [&](uint8_t y, uint8_t u, uint8_t v, int, int) { return range.contains({{y, u, v}}); });
     range = rangeFrom(stats);
   }
   const ChannelStats kept =
-      measure(yuv, row0, [&](uint8_t y, uint8_t u, uint8_t v, int, int) { return inside(range, y, u, v); });
+      measure(yuv, row0, [&](uint8_t y, uint8_t u, uint8_t v, int, int) { return range.contains({{y, u, v}}); });
   result.range = range;
   result.share = band ? static_cast<double>(kept.pixels) / band : 0.0;
   result.found = result.share >= options_.min_share;
@@ -156,7 +155,7 @@ FieldColor FieldColorModel::update(const FieldColor& current, const cv::Mat& yuv
   if (!current.found || yuv.empty() || field_mask.size() != yuv.size() || field_mask.type() != CV_8UC1) return current;
   const ColorClass wider = grown(current.range);
   const ChannelStats stats = measure(yuv, 0, [&](uint8_t y, uint8_t u, uint8_t v, int x, int r) {
-    return field_mask.at<uint8_t>(r, x) != 0 && inside(wider, y, u, v);
+    return field_mask.at<uint8_t>(r, x) != 0 && wider.contains({{y, u, v}});
   });
   const size_t region = static_cast<size_t>(cv::countNonZero(field_mask));
   if (stats.pixels == 0 || region == 0) return current;
@@ -168,7 +167,7 @@ FieldColor FieldColorModel::update(const FieldColor& current, const cv::Mat& yuv
     next.range.max[c] = saturateToByte(static_cast<int>(std::lround((1 - b) * current.range.max[c] + b * measured.max[c])));
   }
   const ChannelStats kept = measure(yuv, 0, [&](uint8_t y, uint8_t u, uint8_t v, int x, int r) {
-    return field_mask.at<uint8_t>(r, x) != 0 && inside(next.range, y, u, v);
+    return field_mask.at<uint8_t>(r, x) != 0 && next.range.contains({{y, u, v}});
   });
   next.share = static_cast<double>(kept.pixels) / region;
   return next;

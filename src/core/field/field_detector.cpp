@@ -5,16 +5,6 @@
 #include <cmath>
 
 namespace rle_vision {
-namespace {
-
-// Share of the bottom band's pixels that `mask` holds.
-double bottomShare(const cv::Mat& mask, double band_share) {
-  const int row0 = std::min(mask.rows - 1, static_cast<int>(std::floor(mask.rows * (1.0 - band_share))));
-  const cv::Mat band = mask.rowRange(row0, mask.rows);
-  return static_cast<double>(cv::countNonZero(band)) / band.total();
-}
-
-}  // namespace
 
 void FieldDetector::detect(const cv::Mat& bgr, FieldResult* result) {
   const auto start = std::chrono::steady_clock::now();
@@ -27,8 +17,9 @@ void FieldDetector::detect(const cv::Mat& bgr, FieldResult* result) {
   if (columns_.cols == 0) return;
   if (colour_.found) {
     // The light moved too far, or the robot no longer stands on this floor: seed again.
-    mask_ = FieldColorModel::mask(columns_, colour_.range);
-    if (bottomShare(mask_, model_.options().seed_band_share) < model_.options().min_share) colour_ = FieldColor();
+    const cv::Mat band = columns_.rowRange(model_.bandStart(columns_.rows), columns_.rows);
+    mask_ = FieldColorModel::mask(band, colour_.range);
+    if (cv::countNonZero(mask_) < model_.options().min_share * band.total()) colour_ = FieldColor();
   }
   if (!colour_.found) {
     colour_ = model_.seed(columns_);

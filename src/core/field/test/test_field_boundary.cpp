@@ -3,7 +3,6 @@
 // exact polyline; a frame with no floor; a light drift the field colour must follow.
 #include <algorithm>
 #include <cmath>
-#include <random>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -14,6 +13,7 @@
 #include "rle_vision/field/on_field.h"
 #include "rle_vision/sim/scene_file.h"
 #include "rle_vision/sim/scene_simulator.h"
+#include "rle_vision/sim/sensor_noise.h"
 #include "testing/test_helpers.h"
 
 namespace rle_vision {
@@ -34,10 +34,9 @@ cv::Mat drawHall(double gain, uint32_t seed, cv::Mat* carpet = nullptr) {
   std::vector<cv::Point> field = {{0, 210 * 16}, {420 * 16, 140 * 16}, {kWidth * 16, 220 * 16},
                                   {kWidth * 16, kHeight * 16}, {0, kHeight * 16}};
   cv::fillPoly(image, std::vector<std::vector<cv::Point>>{field}, kCarpet, cv::LINE_AA, 4);
-  std::mt19937 rng(seed);
-  std::uniform_int_distribution<int> px(0, kWidth - 1), py(0, kHeight - 1);
+  // Seeded, so a test's frames do not depend on which tests ran before it (cv::theRNG is global).
   cv::Mat blotches(kHeight / 8, kWidth / 8, CV_32F);
-  cv::randu(blotches, 0.9, 1.1);
+  cv::RNG(seed).fill(blotches, cv::RNG::UNIFORM, 0.9, 1.1);
   cv::resize(blotches, blotches, image.size(), 0, 0, cv::INTER_LINEAR);
   for (int r = 0; r < kHeight; ++r) {
     for (int x = 0; x < kWidth; ++x) {
@@ -63,12 +62,7 @@ cv::Mat drawHall(double gain, uint32_t seed, cv::Mat* carpet = nullptr) {
     cv::erode(is_carpet, *carpet, cv::Mat::ones(5, 5, CV_8U));
   }
   image.convertTo(image, -1, gain);
-  cv::Mat noise(image.size(), CV_16SC3);
-  cv::randn(noise, 0, 3);
-  cv::Mat noisy;
-  image.convertTo(noisy, CV_16SC3);
-  noisy += noise;
-  noisy.convertTo(image, CV_8UC3);
+  addGaussianNoise(3.0, seed, &image);  // the simulator's sensor noise
   return image;
 }
 
