@@ -28,7 +28,7 @@ SIMULATOR_ONLY = {'simulator.launch'}
 NODES = {
     'Tracker': ('tracker', ['SEGMENTER', 'REGION_LIMITS', 'TRACKER'], ['TRACKER']),
     'EdgeDetector': ('landmark', ['EDGE'], ['EDGE']),
-    'Landmark': ('landmark', ['OBJECTS', 'HOUGH', 'HORIZON', 'LEARNING_LOOP', 'LEARNING'], ['LANDMARK']),
+    'Landmark': ('landmark', ['OBJECTS', 'HOUGH', 'HORIZON', 'LEARNING_LOOP', 'LEARNING', 'FIELD_COLOR', 'FIELD_BOUNDARY'], ['LANDMARK']),
     'GroundProjector': ('ground', ['GROUND', 'GROUND_ATTITUDE', 'ATTITUDE_FILTER'], ['GROUND']),
     'ImageInput': ('image_input', [], ['IMAGE_INPUT']),
 }

@@ -55,4 +55,12 @@ LearningLoopOptions learningLoopFromConfig(const LandmarkConfig& c) {
   return o;
 }
 
+FieldOptions fieldFromConfig(const LandmarkConfig& c) {
+  FieldOptions o;
+#define RLE_FIELD_COLOR_PARAM(key, member, type, default_value, min, max, description) o.colour.member = static_cast<type>(c.key);
+#define RLE_FIELD_BOUNDARY_PARAM(key, member, type, default_value, min, max, description) o.boundary.member = static_cast<type>(c.key);
+#include "rle_vision/params/landmark_params.def"
+  return o;
+}
+
 }  // namespace rle_vision

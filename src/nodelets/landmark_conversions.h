@@ -4,6 +4,7 @@
 #include "rle_vision/Horizon.h"
 #include "rle_vision/LandmarkConfig.h"
 #include "rle_vision/Line.h"
+#include "rle_vision/field/field_detector.h"
 #include "rle_vision/learning/color_learning.h"
 #include "rle_vision/learning/color_learning_loop.h"
 #include "rle_vision/landmark/detected_line.h"
@@ -23,5 +24,6 @@ Horizon horizonToMsg(const std_msgs::Header& header, const HorizonEstimate& hori
 LandmarkOptions optionsFromConfig(const LandmarkConfig& config);
 LearningOptions learningFromConfig(const LandmarkConfig& config);
 LearningLoopOptions learningLoopFromConfig(const LandmarkConfig& config);
+FieldOptions fieldFromConfig(const LandmarkConfig& config);
 
 }  // namespace rle_vision

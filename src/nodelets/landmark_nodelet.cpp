@@ -59,6 +59,7 @@ class LandmarkNodelet : public nodelet::Nodelet {
     LandmarkOptions landmark;
     LearningOptions learning;
     LearningLoopOptions loop;
+    FieldOptions field;
   };
 
   void onInit() override;
@@ -79,9 +80,9 @@ class LandmarkNodelet : public nodelet::Nodelet {
   bool camera(const cv::Size& size, PinholeCamera* camera);
   void noteMissingColour(const std_msgs::Header& header, const cv::Size& size);
   void reportBudget(diagnostic_updater::DiagnosticStatusWrapper& status);
-  FieldResult publishField(const std_msgs::Header& header, const cv::Mat& bgr);
+  FieldResult publishField(const std_msgs::Header& header, const cv::Mat& bgr, const Settings& settings);
   void learnColours(const std_msgs::Header& header, const cv::Mat& bgr, const LandmarkResult& result,
-                    const Settings& settings);
+                    const FieldColor& field, const Settings& settings);
   void publishRanges(const std_msgs::Header& header, const std::vector<ColorClass>& classes);
   void publishDebug(const std_msgs::Header& header, const cv::Mat& bgr, const cv::Mat& edges,
                     const LandmarkResult& result, const Horizon& horizon, const FieldBoundaryEstimate& field,
@@ -165,7 +166,11 @@ void LandmarkNodelet::onInit() {
   const std::string colors_file =
       startup_.colors_file.empty() ? ros::package::getPath("rle_vision") + "/config/colors.yaml" : startup_.colors_file;
   try {
-    learning_loop_ = std::make_unique<ColorLearningLoop>(loadColorClasses(colors_file));
+    const std::vector<ColorClass> classes = loadColorClasses(colors_file);
+    learning_loop_ = std::make_unique<ColorLearningLoop>(classes);
+    for (const ColorClass& c : classes) {
+      if (c.name == kFieldClassName) field_detector_.setConfiguredColour(c);  // the floor's colour seeds from it
+    }
   } catch (const std::exception& e) {
     NODELET_FATAL("cannot load colour classes for learning: %s. Set ~colors_file (the tracker's file).", e.what());
     throw;
@@ -229,11 +234,13 @@ void LandmarkNodelet::advertiseAndSubscribe(ros::NodeHandle& nh, ros::NodeHandle
 }
 
 void LandmarkNodelet::reconfigureCb(LandmarkConfig& config, uint32_t /*level*/) {
-  Settings candidate{optionsFromConfig(config), learningFromConfig(config), learningLoopFromConfig(config)};
+  Settings candidate{optionsFromConfig(config), learningFromConfig(config), learningLoopFromConfig(config),
+                     fieldFromConfig(config)};
   candidate.landmark.horizon.model = horizon_model_;
   std::string problem = validateLandmarkOptions(candidate.landmark);
   if (problem.empty()) problem = validateLearningOptions(candidate.learning);
   if (problem.empty()) problem = validateLearningLoopOptions(candidate.loop);
+  if (problem.empty()) problem = validateFieldOptions(candidate.field);
   {
     std::lock_guard<std::mutex> lock(config_mutex_);
     if (!problem.empty()) {
@@ -315,8 +322,8 @@ void LandmarkNodelet::process(const sensor_msgs::ImageConstPtr& msg) {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   pub_lines_.publish(lines);
   pub_horizon_.publish(horizon);
-  const FieldResult field = publishField(msg->header, bgr);
-  learnColours(msg->header, bgr, result, s);
+  const FieldResult field = publishField(msg->header, bgr, s);
+  learnColours(msg->header, bgr, result, field.colour, s);
   if (have_camera && pub_markers_.getNumSubscribers() > 0) {
     pub_markers_.publish(landmarkMarkers(msg->header, result, camera_model));
   }
@@ -406,8 +413,12 @@ bool LandmarkNodelet::camera(const cv::Size& size, PinholeCamera* camera) {
 }
 
 void LandmarkNodelet::learnColours(const std_msgs::Header& header, const cv::Mat& bgr, const LandmarkResult& result,
-                                   const Settings& s) {
+                                   const FieldColor& field, const Settings& s) {
   ColorLearningLoop::Step step;
+  // The floor's colour goes out with the learned ranges (learning_field_class); a frame without
+  // a floor in view keeps the last one published.
+  if (!s.loop.field_class) learning_loop_->setFieldColour(nullptr);
+  if (s.loop.field_class && field.found) learning_loop_->setFieldColour(&field.range);
   if (!s.loop.enabled) {
     step = learning_loop_->stop(s.learning);
   } else if (!bgr.empty()) {
@@ -451,11 +462,14 @@ void LandmarkNodelet::publishRanges(const std_msgs::Header& header, const std::v
       std::count_if(classes.begin(), classes.end(), [](const ColorClass& c) { return c.source == "learned"; }));
 }
 
-FieldResult LandmarkNodelet::publishField(const std_msgs::Header& header, const cv::Mat& bgr) {
+FieldResult LandmarkNodelet::publishField(const std_msgs::Header& header, const cv::Mat& bgr, const Settings& s) {
   // Where the floor ends, from the colour image (none without one: the edges carry no colour);
-  // only while someone reads it (the tracker subscribes, the overlay draws it).
+  // only while someone reads it (the tracker subscribes, the overlay draws it, or the floor's
+  // colour goes out on color_ranges).
   FieldResult field;
-  const bool wanted = pub_field_.getNumSubscribers() > 0 || pub_debug_.getNumSubscribers() > 0;
+  const bool feeds_ranges = s.loop.enabled && s.loop.field_class && pub_ranges_.getNumSubscribers() > 0;
+  const bool wanted = feeds_ranges || pub_field_.getNumSubscribers() > 0 || pub_debug_.getNumSubscribers() > 0;
+  field_detector_.setOptions(s.field);
   if (wanted && !bgr.empty()) field_detector_.detect(bgr, &field);
   field_found_ = field.boundary.found;
   field_confidence_ = field.boundary.confidence;

@@ -129,8 +129,12 @@ bool annotate(const cv::Mat& image, const std::vector<TrackedBlob>& blobs, const
 // Every image stands alone: the pipeline's steps on one image file.
 class ImageDetector {
  public:
-  ImageDetector(const std::vector<ColorClass>& classes, const LandmarkOptions& options)
-      : table_(classes), options_(options) {}
+  ImageDetector(const std::vector<ColorClass>& classes, const LandmarkOptions& options, const FieldOptions& field)
+      : table_(classes), options_(options), field_options_(field) {
+    for (const ColorClass& c : classes) {
+      if (c.name == kFieldClassName) configured_field_ = std::make_unique<ColorClass>(c);
+    }
+  }
 
   // Prints the image's JSON line (or its error); false on an error.
   bool run(const std::string& path, const std::string& annotate_dir) {
@@ -146,7 +150,9 @@ class ImageDetector {
       ColorTracker tracker;  // a new one per image: nothing carries over
       tracker.process(image, PixelFormat::BGR8, table_, 0.0, &blobs);
       detector_.detectInImage(image, options_, &result);
-      FieldDetector().detect(image, &field);  // the field colour seeded on this image
+      FieldDetector field_detector(field_options_);  // the field colour seeded on this image
+      if (configured_field_) field_detector.setConfiguredColour(*configured_field_);
+      field_detector.detect(image, &field);
     } catch (const std::exception& e) {
       std::cout << errorJson(path, e.what()) << std::endl;
       return false;
@@ -159,6 +165,8 @@ class ImageDetector {
  private:
   ColorTable table_;
   LandmarkOptions options_;
+  FieldOptions field_options_;
+  std::unique_ptr<ColorClass> configured_field_;  // the colours file's field class, if any
   LandmarkDetector detector_;
 };
 
@@ -205,6 +213,7 @@ int runSequence(const Arguments& args, const std::vector<ColorClass>& classes, c
   if (!args.params_file.empty()) {
     stream.learning = loadLearningParams(args.params_file);
     stream.loop = loadLearningLoopParams(args.params_file);
+    stream.field = loadFieldParams(args.params_file);
   }
   SequenceDetector sequence(classes, stream, args.fps);
   int failures = 0;
@@ -238,7 +247,8 @@ int main(int argc, char** argv) {
     LandmarkOptions options = args.params_file.empty() ? LandmarkOptions() : loadLandmarkParams(args.params_file);
     options.horizon.model = horizonModelFromSetting(args.horizon_model);
     if (args.sequence) return runSequence(args, loadColorClasses(args.colors_file), options);
-    detector = std::make_unique<ImageDetector>(loadColorClasses(args.colors_file), options);
+    const FieldOptions field = args.params_file.empty() ? FieldOptions() : loadFieldParams(args.params_file);
+    detector = std::make_unique<ImageDetector>(loadColorClasses(args.colors_file), options, field);
   } catch (const std::exception& e) {
     std::cerr << "rle_vision_detect: " << e.what() << "\n";
     return 2;

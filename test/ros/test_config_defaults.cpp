@@ -42,12 +42,16 @@ TEST(ConfigDefaults, LandmarkConfigIsTheParameterTable) {
 #define RLE_HORIZON_PARAM RLE_OBJECTS_PARAM
 #define RLE_LEARNING_PARAM RLE_OBJECTS_PARAM
 #define RLE_LEARNING_LOOP_PARAM RLE_OBJECTS_PARAM
+#define RLE_FIELD_COLOR_PARAM RLE_OBJECTS_PARAM
+#define RLE_FIELD_BOUNDARY_PARAM RLE_OBJECTS_PARAM
 #include "rle_vision/params/landmark_params.def"
   RLE_CHECKED_ALL(LandmarkConfig);
   // And the conversions give the core's defaults.
   EXPECT_EQ(optionsFromConfig(defaults).hough.min_votes, HoughOptions().min_votes);
   EXPECT_EQ(learningFromConfig(defaults).blend, LearningOptions().blend);
   EXPECT_EQ(learningLoopFromConfig(defaults).publish_period_s, LearningLoopOptions().publish_period_s);
+  EXPECT_EQ(fieldFromConfig(defaults).colour.blend, FieldColorOptions().blend);
+  EXPECT_EQ(fieldFromConfig(defaults).boundary.inlier_px, FieldBoundaryOptions().inlier_px);
 }
 
 // The Tracker's and the GroundProjector's configs are generated from their tables in the same

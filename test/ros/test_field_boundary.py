@@ -3,7 +3,9 @@
 at 5 degrees through (160, 100); a yellow square on the floor and one on the wall. The Landmark
 node must publish field_boundary along that line, and the Tracker (on_field_classes: yellow)
 must drop the yellow blob on the wall, keep the one on the floor with a negative
-above_field_px, and count the dropped blobs in diagnostics."""
+above_field_px, and count the dropped blobs in diagnostics. Then the light drifts to 55%: the
+floor's colour, followed by the Landmark node and published as class 'field' on color_ranges
+(learning_field_class), must reach the tracker, whose field blobs keep >= 95% of the floor."""
 import math
 import sys
 import threading
@@ -13,7 +15,7 @@ import unittest
 import rospy
 import rostest
 from diagnostic_msgs.msg import DiagnosticArray
-from rle_vision.msg import BlobArray, FieldBoundary
+from rle_vision.msg import BlobArray, ColorRangeArray, FieldBoundary
 from sensor_msgs.msg import Image
 
 sys.path.insert(0, __file__.rsplit('/', 1)[0])
@@ -21,6 +23,7 @@ from synthetic_images import BgrImage, bgr_from_yuv  # noqa: E402
 from waiting import SLOW, ByStamp, require  # noqa: E402
 
 W, H = 320, 240
+DRIFT_GAIN = 0.55  # the light at the end of the drift
 WALL, CARPET = (150, 170, 185), (55, 135, 45)
 YELLOW = bgr_from_yuv(170, 60, 155)  # inside colors.yaml's yellow box
 ANGLE_DEG, Y_AT_CENTRE = 5.0, 100.0
@@ -87,6 +90,61 @@ class FieldBoundaryTest(unittest.TestCase):
         # Its lowest row (179) lies about 82 px below the boundary there.
         self.assertAlmostEqual(kept[0].above_field_px, true_row(69.5) - 179, delta=3.0)
         require(lambda: dropped and dropped[-1] > 0, 10 * SLOW, 'the dropped blobs counted in diagnostics')
+
+    def test_field_colour_follows_a_light_drift(self):
+        image = BgrImage(W, H, WALL)
+        image.fill_below_line(ANGLE_DEG, Y_AT_CENTRE, CARPET)
+        image.add_ground_texture(ANGLE_DEG, Y_AT_CENTRE, 6)
+        floor_px = sum(1 for y in range(H) for x in range(W) if y > true_row(x))
+        pub = rospy.Publisher('/field_test/image_raw', Image, queue_size=5)
+        blobs = ByStamp('/field_test/blobs', BlobArray)
+        lock, active = threading.Lock(), []
+
+        def on_active(msg):
+            with lock:
+                active.append({r.name: r for r in msg.ranges})
+        rospy.Subscriber('/field_test/tracker/active_color_ranges', ColorRangeArray, on_active, queue_size=5)
+        stamp = rospy.Time(3000)
+        # 45% in 12 s (10 Hz): two and a half times as fast as the simulator's drift preset
+        # (scene_drift.yaml, 30 s).
+        frames = 140
+        sent = []
+
+        def send(gain):
+            nonlocal stamp
+            stamp += rospy.Duration(0.1)
+            pub.publish(image.scaled(gain).msg(stamp))
+            sent.append(stamp)
+            time.sleep(0.1)
+
+        def floor_kept(s):
+            b = blobs.get(s)
+            return sum(x.area for x in b.blobs if x.color == 'field') / float(floor_px) if b else None
+        for i in range(frames):
+            send(1.0 - (1.0 - DRIFT_GAIN) * min(1.0, i / (frames - 20.0)))
+        early = [floor_kept(s) for s in sent[10:frames - 2]]  # through the drift, once the class reached the tracker
+
+        def settled():
+            send(DRIFT_GAIN)
+            kept = floor_kept(sent[-2])
+            return kept if kept is not None and kept >= 0.95 else None
+        kept = require(settled, 30 * SLOW, "the tracker's field blobs on >= 95%% of the floor at %.0f%% light" % (100 * DRIFT_GAIN))
+        with lock:
+            field = active[-1].get('field') if active else None
+        self.assertIsNotNone(field, 'no field class in the active ranges')
+        self.assertEqual(field.source, 'learned')
+        # The range followed the carpet down: its Y band sits around the dimmed carpet's luma.
+        luma = 0.299 * CARPET[2] + 0.587 * CARPET[1] + 0.114 * CARPET[0]
+        self.assertTrue(field.min[0] <= DRIFT_GAIN * luma <= field.max[0], 'Y range %d..%d' % (field.min[0], field.max[0]))
+        self.assertLess(field.max[0], luma - 6, 'the range did not move down with the light')
+        measured = [k for k in early if k is not None]
+        rospy.loginfo('floor kept by the field class: %.3f at the end, %.3f at worst through the drift', kept,
+                      min(measured or [0]))
+        with lock:
+            ranges = [(list(a['field'].min), list(a['field'].max)) for a in active if 'field' in a][-3:]
+        self.assertGreaterEqual(len(measured), len(early) // 2, 'blobs of too few drift frames arrived')
+        self.assertTrue(min(measured) >= 0.95, 'floor kept through the drift: %s; last field ranges %s' % (
+            ['%.2f' % k if k is not None else None for k in early], ranges))
 
 
 if __name__ == '__main__':

@@ -27,16 +27,11 @@
 
 namespace rle_vision {
 
+// The parameters (field_column_step_px, field_inlier_px, ...) are the FIELD_BOUNDARY group of
+// landmark_params.def, with their defaults and meanings.
 struct FieldBoundaryOptions {
-  int column_step_px = 4;          // every this many columns is scanned
-  double non_field_penalty = 1.0;  // a non-field pixel costs this many field pixels
-  double min_field_share = 0.05;   // a column holds at least this share of the rows as field
-  double min_columns_share = 0.5;  // ... and this share of the columns does, or no boundary
-  double max_occlusion_share = 0.3;  // narrower dips of the field top are occlusions
-  double inlier_px = 4.0;          // a column's top this close to the polyline supports it
-  double min_confidence = 0.3;     // fewer supporting columns: no boundary
-  double follow_rate = 0.05;       // a column scan follows the floor's colour this fast (per pixel)
-  double min_saturation_ratio = 0.33;  // greyer pixels (chroma vs the floor's) are never floor
+#define RLE_FIELD_BOUNDARY_PARAM(key, member, type, default_value, min, max, description) type member = default_value;
+#include "rle_vision/params/landmark_params.def"
 };
 
 // (The message is FieldBoundary.msg; this is the estimate it carries, as HorizonEstimate is Horizon.msg's.)

@@ -10,13 +10,11 @@
 
 namespace rle_vision {
 
+// The parameters (field_seed_band_share, field_blend, ...) are the FIELD_COLOR group of
+// landmark_params.def, with their defaults and meanings.
 struct FieldColorOptions {
-  double seed_band_share = 0.5;   // bottom share of the rows the field colour is seeded from
-  int chroma_bin = 4;             // U and V histogram bin (levels): the mode's resolution
-  double range_sigmas = 3.0;      // the range: median +- this many robust standard deviations
-  double min_half_width = 6.0;    // ... at least this many levels either side (noise, JPEG)
-  double min_share = 0.3;         // the mode must cover this share of the band: else no floor
-  double blend = 0.3;             // an update moves the range this far towards the new one
+#define RLE_FIELD_COLOR_PARAM(key, member, type, default_value, min, max, description) type member = default_value;
+#include "rle_vision/params/landmark_params.def"
 };
 
 struct FieldColor {

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "rle_vision/field/field_detector.h"
 #include "rle_vision/learning/color_learning.h"
 #include "rle_vision/learning/color_learning_loop.h"
 #include "rle_vision/io/config_error.h"
@@ -23,6 +24,10 @@ LearningOptions parseLearningParams(const std::string& text, const std::string& 
 // The learning loop's (`learning`, `learning_publish_period_s`) from the same file.
 LearningLoopOptions loadLearningLoopParams(const std::string& path);
 LearningLoopOptions parseLearningLoopParams(const std::string& text, const std::string& origin);
+
+// The field stage's (the field_* keys) from the same file.
+FieldOptions loadFieldParams(const std::string& path);
+FieldOptions parseFieldParams(const std::string& text, const std::string& origin);
 
 // A parameters file holding every key with its default, limits and meaning (comments).
 std::string defaultLandmarkParamsYaml();

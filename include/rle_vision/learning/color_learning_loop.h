@@ -16,6 +16,9 @@
 
 namespace rle_vision {
 
+// The class the field stage's colour is published as.
+constexpr const char* kFieldClassName = "field";
+
 // The parameters (enabled: the ROS parameter `learning`, publish_period_s) are the
 // LEARNING_LOOP group of landmark_params.def, with their defaults and meanings.
 struct LearningLoopOptions {
@@ -46,6 +49,15 @@ class ColorLearningLoop {
   Step learn(const cv::Mat& bgr, const LandmarkResult& landmarks, const EdgeObjectFinder& objects, double stamp_s,
              double now_s, const LearningOptions& learning, double publish_period_s);
 
+  // The floor's colour as the field stage follows it (options field_class): from the next
+  // learn(), the published set holds it as class kFieldClassName (in place of a configured
+  // class of that name, whose look and min_area_px it keeps; else with min_area_px 0.5% of the
+  // image; left out when the set is full). A move of a level or more on any bound is a change
+  // to publish; a move of over a third of the published range's half width on a channel (the
+  // tracker's copy is losing the floor's outer pixels: fast light changes) goes out at once,
+  // without waiting for the publish period. nullptr: no field class (a configured one stays).
+  void setFieldColour(const ColorClass* field);
+
   // Learning is off: the configured set to hand back once, if learned ranges went out before;
   // learning starts over from the configured ranges.
   Step stop(const LearningOptions& learning);
@@ -59,6 +71,13 @@ class ColorLearningLoop {
   bool changes_pending_ = false;    // changed ranges not yet published
   bool published_once_ = false;
   double last_publish_s_ = 0;
+  std::vector<ColorClass> withField(std::vector<ColorClass> classes) const;
+
+  bool has_field_ = false;
+  bool field_urgent_ = false;    // the field moved too far for the publish period to wait
+  size_t image_area_px_ = 0;     // of the last frame learned from
+  ColorClass field_;             // the field class to publish (has_field_)
+  ColorClass published_field_;   // ... as it went out last (name empty: not published)
   std::mutex resume_mutex_;
   std::unique_ptr<std::vector<ColorClass>> pending_resume_;
 };

@@ -23,6 +23,7 @@ struct CameraStreamOptions {
   LandmarkOptions landmark;
   LearningOptions learning;
   LearningLoopOptions loop;  // loop.enabled: learn (false: the configured ranges throughout)
+  FieldOptions field;
 };
 
 class CameraStream {

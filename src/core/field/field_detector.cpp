@@ -4,7 +4,44 @@
 #include <chrono>
 #include <cmath>
 
+#include "rle_vision/landmark/param_range.h"
+
 namespace rle_vision {
+
+std::string validateFieldOptions(const FieldOptions& o) {
+  std::string problem;
+#define RLE_FIELD_COLOR_PARAM(key, member, type, default_value, min, max, description) \
+  if (problem.empty()) problem = outOfRange(#key, o.colour.member, min, max);
+#define RLE_FIELD_BOUNDARY_PARAM(key, member, type, default_value, min, max, description) \
+  if (problem.empty()) problem = outOfRange(#key, o.boundary.member, min, max);
+#include "rle_vision/params/landmark_params.def"
+  return problem;
+}
+
+void FieldDetector::setOptions(const FieldOptions& options) {
+  model_ = FieldColorModel(options.colour);
+  finder_ = FieldBoundaryFinder(options.boundary);
+}
+
+void FieldDetector::setConfiguredColour(const ColorClass& configured) {
+  has_configured_ = configured.space == ColorSpace::YUV;
+  configured_ = configured;
+}
+
+FieldColor FieldDetector::seed() {
+  if (has_configured_) {
+    const cv::Mat band = columns_.rowRange(model_.bandStart(columns_.rows), columns_.rows);
+    const double share = cv::countNonZero(FieldColorModel::mask(band, configured_)) / static_cast<double>(band.total());
+    if (share >= model_.options().min_share) {
+      FieldColor configured;
+      configured.found = true;
+      configured.range = configured_;
+      configured.share = share;
+      return configured;
+    }
+  }
+  return model_.seed(columns_);
+}
 
 void FieldDetector::detect(const cv::Mat& bgr, FieldResult* result) {
   const auto start = std::chrono::steady_clock::now();
@@ -22,7 +59,7 @@ void FieldDetector::detect(const cv::Mat& bgr, FieldResult* result) {
     if (cv::countNonZero(mask_) < model_.options().min_share * band.total()) colour_ = FieldColor();
   }
   if (!colour_.found) {
-    colour_ = model_.seed(columns_);
+    colour_ = seed();
     result->reseeded = true;
   }
   result->colour = colour_;

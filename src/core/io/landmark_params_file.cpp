@@ -23,6 +23,8 @@ const std::vector<std::string>& landmarkFileKeys() {
 #define RLE_HORIZON_PARAM RLE_KEY
 #define RLE_LEARNING_PARAM RLE_KEY
 #define RLE_LEARNING_LOOP_PARAM RLE_KEY
+#define RLE_FIELD_COLOR_PARAM RLE_KEY
+#define RLE_FIELD_BOUNDARY_PARAM RLE_KEY
 #include "rle_vision/params/landmark_params.def"
 #undef RLE_KEY
     return all;
@@ -86,6 +88,8 @@ std::string defaultLandmarkParamsYaml() {
 #define RLE_HORIZON_PARAM RLE_ENTRY
 #define RLE_LEARNING_PARAM RLE_ENTRY
 #define RLE_LEARNING_LOOP_PARAM RLE_ENTRY
+#define RLE_FIELD_COLOR_PARAM RLE_ENTRY
+#define RLE_FIELD_BOUNDARY_PARAM RLE_ENTRY
 #include "rle_vision/params/landmark_params.def"
 #undef RLE_ENTRY
   yaml << "low_priority: true  # ROS: run the landmark and edge workers at nice 19 / SCHED_IDLE\n";
@@ -135,5 +139,19 @@ LearningLoopOptions parseLearningLoopParams(const std::string& text, const std::
 LearningLoopOptions loadLearningLoopParams(const std::string& path) {
   return parseLearningLoopParams(yaml_reader::readFile(path), path);
 }
+
+FieldOptions parseFieldParams(const std::string& text, const std::string& origin) {
+  FieldOptions o;
+  const YAML::Node root = parseChecked(text, origin);
+  if (!root || root.IsNull()) return o;
+#define RLE_FIELD_COLOR_PARAM(key, member, type, default_value, min, max, description) read(origin, root, #key, &o.colour.member, min, max);
+#define RLE_FIELD_BOUNDARY_PARAM(key, member, type, default_value, min, max, description) read(origin, root, #key, &o.boundary.member, min, max);
+#include "rle_vision/params/landmark_params.def"
+  const std::string problem = validateFieldOptions(o);
+  if (!problem.empty()) yaml_reader::fail(origin, root, problem);
+  return o;
+}
+
+FieldOptions loadFieldParams(const std::string& path) { return parseFieldParams(yaml_reader::readFile(path), path); }
 
 }  // namespace rle_vision

@@ -1,5 +1,8 @@
 #include "rle_vision/learning/color_learning_loop.h"
 
+#include <algorithm>
+#include <cstdlib>
+
 #include "rle_vision/landmark/param_range.h"
 
 namespace rle_vision {
@@ -34,15 +37,58 @@ ColorLearningLoop::Step ColorLearningLoop::learn(const cv::Mat& bgr, const Landm
     step.resumed = learner_->resume(*resume, stamp_s);
     published_learned_ = step.resumed > 0;
   }
+  image_area_px_ = bgr.total();
   changes_pending_ = learner_->update(bgr, landmarks, objects, stamp_s) || changes_pending_;
-  if (changes_pending_ && (!published_once_ || now_s - last_publish_s_ >= publish_period_s)) {
+  if (changes_pending_ && (!published_once_ || field_urgent_ || now_s - last_publish_s_ >= publish_period_s)) {
     step.publish = true;
-    step.classes = learner_->classes();
+    step.classes = withField(learner_->classes());
+    published_field_ = has_field_ ? field_ : ColorClass{""};
+    field_urgent_ = false;
     last_publish_s_ = now_s;
     published_once_ = published_learned_ = true;
     changes_pending_ = false;
   }
   return step;
+}
+
+void ColorLearningLoop::setFieldColour(const ColorClass* field) {
+  has_field_ = field != nullptr;
+  if (!has_field_) return;
+  field_ = *field;
+  field_.name = kFieldClassName;
+  field_.source = "learned";
+  const bool first = published_field_.name.empty();
+  bool moved = first;
+  for (int c = 0; c < 3; ++c) {
+    const int shift_min = std::abs(field_.min[c] - published_field_.min[c]);
+    const int shift_max = std::abs(field_.max[c] - published_field_.max[c]);
+    moved = moved || shift_min > 0 || shift_max > 0;
+    // The tracker's copy is losing the floor's outer pixels: a bound moved by over a third of
+    // the published half width (the floor's spread) goes out without waiting for the period.
+    const double half_width = 0.5 * (published_field_.max[c] - published_field_.min[c]);
+    field_urgent_ = field_urgent_ || (!first && std::max(shift_min, shift_max) > half_width / 3.0);
+  }
+  changes_pending_ = changes_pending_ || moved;
+}
+
+std::vector<ColorClass> ColorLearningLoop::withField(std::vector<ColorClass> classes) const {
+  if (!has_field_) return classes;
+  for (ColorClass& c : classes) {
+    if (c.name == kFieldClassName) {
+      // The configured class's look and size limit, the followed range.
+      const ColorClass configured = c;
+      c = field_;
+      c.display_rgb = configured.display_rgb;
+      c.min_area_px = configured.min_area_px;
+      return classes;
+    }
+  }
+  if (static_cast<int>(classes.size()) >= kMaxColorClasses) return classes;
+  classes.push_back(field_);
+  // Floor patches under 0.5% of the view are specks of the floor's colour elsewhere, not the
+  // floor: the tracker need not track them.
+  classes.back().min_area_px = std::max<uint32_t>(1, static_cast<uint32_t>(0.005 * image_area_px_));
+  return classes;
 }
 
 ColorLearningLoop::Step ColorLearningLoop::stop(const LearningOptions& learning) {
@@ -52,6 +98,8 @@ ColorLearningLoop::Step ColorLearningLoop::stop(const LearningOptions& learning)
   step.publish = true;
   step.classes = configured_;
   published_learned_ = changes_pending_ = false;
+  published_field_ = ColorClass{""};
+  field_urgent_ = false;
   return step;
 }
 

@@ -5,7 +5,11 @@
 namespace rle_vision {
 
 CameraStream::CameraStream(const std::vector<ColorClass>& classes, const CameraStreamOptions& options)
-    : table_(std::make_shared<const ColorTable>(classes)), options_(options), loop_(classes) {}
+    : table_(std::make_shared<const ColorTable>(classes)), options_(options), loop_(classes), field_(options.field) {
+  for (const ColorClass& c : classes) {
+    if (c.name == kFieldClassName) field_.setConfiguredColour(c);  // the floor's colour seeds from it
+  }
+}
 
 void CameraStream::process(const cv::Mat& bgr, double stamp_s, Frame* frame) {
   frame->table = table_;
@@ -13,6 +17,9 @@ void CameraStream::process(const cv::Mat& bgr, double stamp_s, Frame* frame) {
   tracker_.process(bgr, PixelFormat::BGR8, *table_, stamp_s, &frame->blobs);
   detector_.detectInImage(bgr, options_.landmark, &frame->landmarks);
   field_.detect(bgr, &frame->field);
+  // As the Landmark node does: the floor's colour goes out with the learned ranges.
+  if (!options_.loop.field_class) loop_.setFieldColour(nullptr);
+  if (options_.loop.field_class && frame->field.colour.found) loop_.setFieldColour(&frame->field.colour.range);
   const ColorLearningLoop::Step step =
       options_.loop.enabled ? loop_.learn(bgr, frame->landmarks, detector_.edgeObjects(), stamp_s, stamp_s,
                                           options_.learning, options_.loop.publish_period_s)

@@ -142,5 +142,35 @@ TEST(DetectCli, SequenceCarriesLearnedRangesFromFrameToFrame) {
             std::string::npos);
 }
 
+// The field stage reads its parameters from --params too, and --sequence publishes the floor's
+// colour as class "field" (learning_field_class), as the Landmark node does.
+TEST(DetectCli, FieldParametersAndTheFieldClass) {
+  const std::string dir = testing::TempDir() + "/rle_vision_field";
+  ASSERT_EQ(std::system(("rm -rf " + dir + " && mkdir -p " + dir).c_str()), 0);
+  const SceneSimulator simulator(loadSceneConfig(test::sourcePath("config/scene_field.yaml")));
+  std::string frames;
+  for (int i = 0; i < 4; ++i) {
+    const std::string name = dir + "/hall_" + std::to_string(i) + ".png";
+    ASSERT_TRUE(cv::imwrite(name, simulator.render(i, i / 30.0).image));
+    frames += " " + name;
+  }
+  std::ofstream(dir + "/field_class.yaml") << "learning_field_class: true\n";
+  std::ofstream(dir + "/no_floor.yaml") << "field_min_share: 1.0\n";  // the floor must fill the whole band
+  int status = 0;
+  const std::string plain = run(std::string(RLE_VISION_DETECT) + " --sequence" + frames, &status);
+  ASSERT_EQ(status, 0);
+  const std::string with_field =
+      run(std::string(RLE_VISION_DETECT) + " --sequence --params " + dir + "/field_class.yaml" + frames, &status);
+  ASSERT_EQ(status, 0);
+  EXPECT_EQ(countOf(plain, "\"color\":\"field\""), 0);
+  EXPECT_GE(countOf(with_field, "\"color\":\"field\""), 2) << with_field;  // from the second frame on
+  const std::string image = dir + "/hall_0.png";
+  EXPECT_NE(run(std::string(RLE_VISION_DETECT) + " " + image, &status).find("\"field_boundary\":{\"found\":true"),
+            std::string::npos);
+  EXPECT_NE(run(std::string(RLE_VISION_DETECT) + " --params " + dir + "/no_floor.yaml " + image, &status)
+                .find("\"field_boundary\":{\"found\":false"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace rle_vision

@@ -120,6 +120,44 @@ TEST(FieldDetector, AStreamSeedsOnceAndFindsTheEdgeFromTheScannedColumns) {
   EXPECT_FALSE(none.boundary.found);
 }
 
+// A configured floor colour seeds the stream when it covers the bottom of the view; one for
+// another hall does not, and the view's own dominant colour is taken instead.
+TEST(FieldDetector, SeedsFromAConfiguredColourOnlyWhereItIsTheFloor) {
+  const cv::Mat hall = drawHall(1.0, 3);
+  FieldResult seeded;
+  FieldDetector().detect(hall, &seeded);
+  ASSERT_TRUE(seeded.colour.found);
+  ColorClass configured = seeded.colour.range;  // the carpet's own range, widened a little
+  for (int c = 0; c < 3; ++c) {
+    configured.min[c] = static_cast<uint8_t>(std::max(0, configured.min[c] - 5));
+    configured.max[c] = static_cast<uint8_t>(std::min(255, configured.max[c] + 5));
+  }
+  FieldDetector from_file;
+  from_file.setConfiguredColour(configured);
+  FieldResult result;
+  from_file.detect(hall, &result);
+  ASSERT_TRUE(result.reseeded);
+  ASSERT_TRUE(result.boundary.found);
+  EXPECT_EQ(result.colour.range.min, configured.min);  // the seed is the configured range
+  EXPECT_EQ(result.colour.range.max, configured.max);
+  EXPECT_NEAR(result.boundary.rowAt(600), trueRow(600), 6.0);
+  // Another hall's blue floor: not this view's floor, so the view seeds itself.
+  ColorClass blue = test::makeClass("field", ColorSpace::YUV, {{20, 160, 60}}, {{120, 230, 120}});
+  FieldDetector wrong_file;
+  wrong_file.setConfiguredColour(blue);
+  wrong_file.detect(hall, &result);
+  ASSERT_TRUE(result.boundary.found);
+  EXPECT_EQ(result.colour.range.min, seeded.colour.range.min);
+  // Options come from the parameter table, with its limits.
+  EXPECT_EQ(validateFieldOptions(FieldOptions()), "");
+  FieldOptions bad;
+  bad.boundary.inlier_px = NAN;
+  EXPECT_NE(validateFieldOptions(bad).find("field_inlier_px"), std::string::npos);
+  bad = FieldOptions();
+  bad.colour.blend = 1.5;
+  EXPECT_NE(validateFieldOptions(bad).find("field_blend"), std::string::npos);
+}
+
 TEST(FieldBoundary, MatchesTheSimulatedHallsExactBoundaryThroughAWalkingGait) {
   // config/scene_field.yaml: a carpet with white lines 0.7 m inside its edges, the hall's floor
   // around it, walls and people beyond, two robots standing at the far edge; the camera sways

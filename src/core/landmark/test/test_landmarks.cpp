@@ -277,8 +277,10 @@ TEST(LandmarkParams, DefaultsFileRoundTripsEveryParameter) {
   const std::string text = defaultLandmarkParamsYaml();
   const LandmarkOptions file = parseLandmarkParams(text, "defaults.yaml");
   const LearningOptions learning = parseLearningParams(text, "defaults.yaml");
+  const FieldOptions field = parseFieldParams(text, "defaults.yaml");
   const LandmarkOptions defaults;
   const LearningOptions learning_defaults;
+  const FieldOptions field_defaults;
   int keys = 0;
 #define RLE_EXPECT_READ_BACK(key, read, expected)              \
   EXPECT_EQ(read, expected) << #key;                            \
@@ -292,9 +294,13 @@ TEST(LandmarkParams, DefaultsFileRoundTripsEveryParameter) {
   RLE_EXPECT_READ_BACK(key, file.horizon.member, defaults.horizon.member)
 #define RLE_LEARNING_PARAM(key, member, type, d, min, max, doc) \
   RLE_EXPECT_READ_BACK(key, learning.member, learning_defaults.member)
+#define RLE_FIELD_COLOR_PARAM(key, member, type, d, min, max, doc) \
+  RLE_EXPECT_READ_BACK(key, field.colour.member, field_defaults.colour.member)
+#define RLE_FIELD_BOUNDARY_PARAM(key, member, type, d, min, max, doc) \
+  RLE_EXPECT_READ_BACK(key, field.boundary.member, field_defaults.boundary.member)
 #include "rle_vision/params/landmark_params.def"
 #undef RLE_EXPECT_READ_BACK
-  EXPECT_EQ(keys, 53);
+  EXPECT_EQ(keys, 53 + 15);
   // Values that differ from the defaults are read, too.
   EXPECT_EQ(parseLandmarkParams("gray_threshold: 40\nthin_edges: false\nseed: 7\n", "l.yaml").objects.gray_threshold, 40);
   EXPECT_EQ(parseLandmarkParams("seed: 7\n", "l.yaml").hough.seed, 7u);
@@ -310,6 +316,17 @@ TEST(LandmarkParams, LearningKeysAreCheckedLikeTheOthers) {
   EXPECT_THROW(parseLearningParams("learning_blend: 0\n", "l.yaml"), ConfigError);
   EXPECT_THROW(parseLearningParams("learning_create_classes: maybe\n", "l.yaml"), ConfigError);
   EXPECT_THROW(parseLearningParams("learning_blnd: 0.3\n", "l.yaml"), ConfigError);
+}
+
+TEST(LandmarkParams, FieldKeysAreCheckedLikeTheOthers) {
+  const FieldOptions read = parseFieldParams("field_blend: 0.5\nfield_column_step_px: 2\n", "l.yaml");
+  EXPECT_EQ(read.colour.blend, 0.5);
+  EXPECT_EQ(read.boundary.column_step_px, 2);
+  EXPECT_TRUE(parseLearningLoopParams("learning_field_class: true\n", "l.yaml").field_class);
+  EXPECT_THROW(parseFieldParams("field_inlier_px: .nan\n", "l.yaml"), ConfigError);
+  EXPECT_THROW(parseFieldParams("field_column_step_px: 0\n", "l.yaml"), ConfigError);
+  EXPECT_THROW(parseFieldParams("field_column_step_px: 2.5\n", "l.yaml"), ConfigError);
+  EXPECT_THROW(parseFieldParams("field_blnd: 0.3\n", "l.yaml"), ConfigError);
 }
 
 TEST(LandmarkParams, BrokenFilesFailWithTheLine) {

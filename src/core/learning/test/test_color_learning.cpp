@@ -467,6 +467,59 @@ TEST(ColorLearningLoop, ResumesOnceFromTheTrackersLearnedRanges) {
   EXPECT_NE(validateLearningLoopOptions(nan), "");
 }
 
+// The floor's colour (the field stage's) goes out with the learned ranges as class "field":
+// added to a set without one (sized to the view), in place of a configured one (keeping its
+// look); a move of one level is a change to publish; nullptr takes it out again.
+TEST(ColorLearningLoop, PublishesTheFieldColourAsAClass) {
+  SyntheticFrame empty = boxFrame(cv::Scalar(50, 140, 40));
+  empty.landmarks.lines.clear();  // nothing learned: only the field changes the set
+  ColorClass floor = test::makeClass("anything", ColorSpace::YUV, {{60, 100, 90}}, {{140, 130, 120}});
+  ColorLearningLoop loop(obstacleClasses());
+  loop.setFieldColour(&floor);
+  ColorLearningLoop::Step step = loop.learn(empty.image, empty.landmarks, empty.objects, 0.0, 0.0, LearningOptions(), 0.5);
+  ASSERT_TRUE(step.publish);
+  ASSERT_EQ(step.classes.size(), 3u);
+  EXPECT_EQ(step.classes[2].name, kFieldClassName);
+  EXPECT_EQ(step.classes[2].source, "learned");
+  EXPECT_EQ(step.classes[2].min, floor.min);
+  EXPECT_EQ(step.classes[2].min_area_px, static_cast<uint32_t>(0.005 * empty.image.total()));
+  loop.setFieldColour(&floor);  // unchanged: nothing to publish
+  EXPECT_FALSE(loop.learn(empty.image, empty.landmarks, empty.objects, 1.0, 1.0, LearningOptions(), 0.5).publish);
+  floor.max[1] = 131;
+  loop.setFieldColour(&floor);
+  step = loop.learn(empty.image, empty.landmarks, empty.objects, 2.0, 2.0, LearningOptions(), 0.5);
+  ASSERT_TRUE(step.publish);
+  EXPECT_EQ(step.classes[2].max[1], 131);
+  // Within the publish period a small move waits; one of over a third of the half width (here
+  // 40 levels of Y: 13.3) does not: the tracker's copy would lose the floor's outer pixels.
+  floor.min[0] = 65;
+  loop.setFieldColour(&floor);
+  EXPECT_FALSE(loop.learn(empty.image, empty.landmarks, empty.objects, 2.1, 2.1, LearningOptions(), 0.5).publish);
+  floor.min[0] = 74;
+  floor.max[0] = 154;
+  loop.setFieldColour(&floor);
+  step = loop.learn(empty.image, empty.landmarks, empty.objects, 2.2, 2.2, LearningOptions(), 0.5);
+  ASSERT_TRUE(step.publish);
+  EXPECT_EQ(step.classes[2].max[0], 154);
+  loop.setFieldColour(nullptr);
+  ColorLearningLoop::Step without = loop.learn(empty.image, empty.landmarks, empty.objects, 3.0, 3.0, LearningOptions(), 0.5);
+  EXPECT_FALSE(without.publish);  // the next change goes out without it
+  // A configured field class is replaced by the followed range, keeping its look and size limit.
+  std::vector<ColorClass> with_field = obstacleClasses();
+  with_field.push_back(test::makeClass("field", ColorSpace::YUV, {{0, 0, 0}}, {{255, 127, 127}}));
+  with_field.back().display_rgb = {{1, 2, 3}};
+  with_field.back().min_area_px = 77;
+  ColorLearningLoop configured(with_field);
+  configured.setFieldColour(&floor);
+  step = configured.learn(empty.image, empty.landmarks, empty.objects, 0.0, 0.0, LearningOptions(), 0.5);
+  ASSERT_EQ(step.classes.size(), 3u);
+  EXPECT_EQ(step.classes[2].min, floor.min);
+  EXPECT_EQ(step.classes[2].max, floor.max);
+  EXPECT_EQ(step.classes[2].display_rgb, with_field.back().display_rgb);
+  EXPECT_EQ(step.classes[2].min_area_px, 77u);
+  EXPECT_EQ(step.classes[2].source, "learned");
+}
+
 TEST(ColorLearner, PersistentUnknownColoursBecomeLearnedClassesWhenAsked) {
   LearningOptions options;
   options.create_classes = true;
