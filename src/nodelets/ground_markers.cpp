@@ -51,4 +51,40 @@ visualization_msgs::MarkerArray obstacleMarkers(const ObstacleArray& obstacles,
   return array;
 }
 
+visualization_msgs::Marker fieldEdgeMarker(const std_msgs::Header& header, const FieldEdgeOnGround& edge) {
+  visualization_msgs::Marker strip;
+  strip.header = header;
+  strip.ns = "field_edge";
+  strip.id = 0;
+  strip.type = visualization_msgs::Marker::LINE_STRIP;
+  strip.action = edge.points.empty() ? visualization_msgs::Marker::DELETE : visualization_msgs::Marker::ADD;
+  strip.pose.orientation.w = 1;
+  strip.scale.x = 0.03;  // line width, m
+  strip.color.r = 1.0f;
+  strip.color.g = 0.55f;
+  strip.color.b = 0.0f;
+  strip.color.a = 0.9f;
+  for (const Eigen::Vector3d& p : edge.points) {
+    geometry_msgs::Point point;
+    point.x = p.x();
+    point.y = p.y();
+    point.z = 0.01;  // just above the ground, so that a grid does not hide it
+    strip.points.push_back(point);
+  }
+  return strip;
+}
+
+sensor_msgs::LaserScan fieldEdgeScan(const std_msgs::Header& header, const FieldEdgeOnGround& edge, double max_range_m) {
+  sensor_msgs::LaserScan scan;
+  scan.header = header;
+  scan.range_min = 0;
+  scan.range_max = static_cast<float>(max_range_m);
+  if (edge.ranges_m.empty()) return scan;
+  scan.angle_increment = static_cast<float>(edge.bearing_step_rad);
+  scan.angle_min = static_cast<float>(edge.bearing_min_rad);
+  scan.angle_max = static_cast<float>(edge.bearing_min_rad + (edge.ranges_m.size() - 1) * edge.bearing_step_rad);
+  scan.ranges = edge.ranges_m;
+  return scan;
+}
+
 }  // namespace rle_vision

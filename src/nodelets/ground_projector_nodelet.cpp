@@ -31,6 +31,7 @@
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "field_edge_publisher.h"
 #include "ground_conversions.h"
 #include "ground_markers.h"
 #include "node_settings.h"
@@ -68,6 +69,8 @@ class GroundProjectorNodelet : public nodelet::Nodelet {
   void broadcastPose(const std_msgs::Header& header, double roll, double pitch);
   void place(const BlobArray& msg, const Eigen::Isometry3d& base_from_optical);
   void publishAttitude(const std_msgs::Header& header, const AttitudeTimeline::Attitude& attitude);
+  bool fieldEdgePose(const std_msgs::Header& header, Eigen::Isometry3d* base_from_optical);
+  bool fieldEdgeIntrinsics(CameraIntrinsics* intrinsics);
 
   // Static parameters.
   bool use_horizon_ = false;  // attitude_source: horizon
@@ -108,6 +111,8 @@ class GroundProjectorNodelet : public nodelet::Nodelet {
   AttitudeTimeline attitude_;
   std::deque<BlobArrayConstPtr> pending_blobs_;
   bool optical_tf_sent_ = false;
+
+  FieldEdgePublisher field_edge_;  // the field boundary on the ground
 
   std::shared_ptr<diagnostic_updater::Updater> diagnostics_;
   ros::WallTimer diagnostics_timer_;
@@ -157,6 +162,14 @@ void GroundProjectorNodelet::onInit() {
   diagnostics_->add("ground projector", [this](diagnostic_updater::DiagnosticStatusWrapper& s) { stats_.report(s, 5.0); });
   diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) { diagnostics_->update(); });
   advertiseAndSubscribe(nh);
+  FieldEdgePublisher::Sources sources;
+  sources.pose = [this](const std_msgs::Header& header, Eigen::Isometry3d* pose) { return fieldEdgePose(header, pose); };
+  sources.intrinsics = [this](CameraIntrinsics* intrinsics) { return fieldEdgeIntrinsics(intrinsics); };
+  sources.options = [this] {
+    std::lock_guard<std::mutex> lock(config_mutex_);
+    return ground_options_;
+  };
+  field_edge_.start(nh, pnh, base_frame_, use_horizon_ ? nullptr : tf_buffer_.get(), queue_size_, std::move(sources));
   NODELET_INFO("placing blobs on the ground of '%s'; camera attitude from %s", base_frame_.c_str(),
                use_horizon_ ? "the horizon (broadcast to tf)" : "tf");
 }
@@ -228,8 +241,10 @@ void GroundProjectorNodelet::reconfigureCb(GroundProjectorConfig& config, uint32
   AttitudeFilterOptions options = attitudeFilterFromConfig(config);
   const GroundOptions ground = groundFromConfig(config);
   std::string problem = validateAttitudeFilterOptions(options);
-  for (double value : {ground.max_range_m, ground.camera_height_m, ground.attitude_stddev_deg}) {
-    if (problem.empty() && !(std::isfinite(value) && value > 0)) problem = "max_range_m, camera_height_m and attitude_stddev_deg must be positive numbers";
+  for (double value : {ground.max_range_m, ground.camera_height_m, ground.attitude_stddev_deg, ground.field_edge_bearing_step_deg}) {
+    if (problem.empty() && !(std::isfinite(value) && value > 0)) {
+      problem = "max_range_m, camera_height_m, attitude_stddev_deg and field_edge_bearing_step_deg must be positive numbers";
+    }
   }
   std::lock_guard<std::mutex> lock(config_mutex_);
   if (!problem.empty()) {
@@ -393,6 +408,41 @@ void GroundProjectorNodelet::placePendingBlobs() {
     }
     place(*msg, baseFromOptical(roll, pitch, 0.0, height_m));
   }
+}
+
+bool GroundProjectorNodelet::fieldEdgePose(const std_msgs::Header& header, Eigen::Isometry3d* base_from_optical) {
+  if (!use_horizon_) {
+    try {  // the message filter waited for it; it may have expired since
+      *base_from_optical = tf2::transformToEigen(tf_buffer_->lookupTransform(base_frame_, header.frame_id, header.stamp));
+      return true;
+    } catch (const tf2::TransformException& e) {
+      NODELET_WARN_THROTTLE(5.0, "no camera pose for the field boundary: %s", e.what());
+      return false;
+    }
+  }
+  double roll = 0, pitch = 0, height_m = 0;
+  {
+    std::lock_guard<std::mutex> lock(attitude_mutex_);
+    if (attitude_.attitudeAt(header.stamp.toSec(), &roll, &pitch) != AttitudeTimeline::Lookup::kFound) return false;
+  }
+  {
+    std::lock_guard<std::mutex> lock(config_mutex_);
+    height_m = ground_options_.camera_height_m;
+  }
+  *base_from_optical = baseFromOptical(roll, pitch, 0.0, height_m);
+  return true;
+}
+
+bool GroundProjectorNodelet::fieldEdgeIntrinsics(CameraIntrinsics* intrinsics) {
+  sensor_msgs::CameraInfoConstPtr info;
+  {
+    std::lock_guard<std::mutex> lock(info_mutex_);
+    info = camera_info_;
+  }
+  std::string problem = "no camera_info yet on " + getNodeHandle().resolveName("camera_info");
+  if (info && intrinsicsFromInfo(*info, intrinsics, &problem)) return true;
+  NODELET_WARN_THROTTLE(5.0, "cannot place the field boundary on the ground: %s", problem.c_str());
+  return false;
 }
 
 void GroundProjectorNodelet::place(const BlobArray& msg, const Eigen::Isometry3d& base_from_optical) {
