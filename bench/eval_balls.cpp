@@ -4,9 +4,7 @@
 //
 //   rle_vision_eval_balls --calibrate DIR [--label-class N] [--json OUT] DIR...
 //
-// Folders hold images with YOLO label files beside them. A ball counts as found when a blob of
-// the class (area >= 20 px) has its centroid inside the ball's labelled box; blob precision is
-// the share of such blobs whose centroid lies inside some ball box.
+// Folders hold images with YOLO label files beside them; scoring: ball_scoring.h.
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -17,8 +15,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "ball_scoring.h"
 #include "harness.h"
-#include "eval/opencv_pipeline.h"
 #include "rle_vision/pipeline/camera_stream.h"
 #include "rle_vision/learning/color_calibration.h"
 #include "rle_vision/io/color_config.h"
@@ -31,88 +29,9 @@ namespace {
 
 using namespace rle_vision;
 
-constexpr uint32_t kMinBlobArea = 20;
-constexpr double kOnFieldMarginPx = 10;  // the tracker's on_field_margin_px default
-
-struct Score {
-  int frames = 0, balls = 0, found = 0, blobs = 0, on_ball = 0;
-  double ms = 0;
-  void add(const Score& o) {
-    frames += o.frames, balls += o.balls, found += o.found, blobs += o.blobs, on_ball += o.on_ball, ms += o.ms;
-  }
-  double recall() const { return balls ? 100.0 * found / balls : 0; }
-  double precision() const { return blobs ? 100.0 * on_ball / blobs : 100; }
-  double msPerFrame() const { return frames ? ms / frames : 0; }
-};
-
-bool inside(const cv::Point2d& p, const cv::Rect& box) {
-  return p.x >= box.x && p.x <= box.br().x - 1 && p.y >= box.y && p.y <= box.br().y - 1;
-}
-
-void score(const std::vector<cv::Point2d>& blobs, const std::vector<cv::Rect>& balls, double ms, Score* s) {
-  ++s->frames;
-  s->ms += ms;
-  s->balls += static_cast<int>(balls.size());
-  s->blobs += static_cast<int>(blobs.size());
-  for (const cv::Rect& ball : balls) {
-    bool found = false;
-    for (const cv::Point2d& b : blobs) found = found || inside(b, ball);
-    s->found += found;
-  }
-  for (const cv::Point2d& b : blobs) {
-    bool on_ball = false;
-    for (const cv::Rect& ball : balls) on_ball = on_ball || inside(b, ball);
-    s->on_ball += on_ball;
-  }
-}
-
-double msSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-// The methods on one frame.
-class BallMethods {
- public:
-  explicit BallMethods(const ColorClass& ball) : table_({ball}), opencv_({ball}) {}
-
-  // `on_field`: the same blobs less those whose lowest point (below the centroid) lies more than
-  // the tracker's default margin above the field boundary (the field colour seeded on the frame).
-  void ours(const cv::Mat& bgr, const std::vector<cv::Rect>& balls, Score* s, Score* on_field) {
-    const auto start = std::chrono::steady_clock::now();
-    segmenter_.segment(bgr, PixelFormat::BGR8, table_, &regions_);
-    const double ms = msSince(start);
-    std::vector<cv::Point2d> blobs, kept;
-    FieldResult field;
-    FieldDetector().detect(bgr, &field);
-    for (const Region& r : regions_) {
-      if (r.area < kMinBlobArea) continue;
-      blobs.emplace_back(r.cx, r.cy);
-      if (!field.boundary.found || field.boundary.heightAbove(r.cx, r.bottom_at_cx) <= kOnFieldMarginPx) {
-        kept.emplace_back(r.cx, r.cy);
-      }
-    }
-    score(blobs, balls, ms, s);
-    score(kept, balls, ms + field.ms, on_field);
-  }
-
-  void opencv(const cv::Mat& bgr, const std::vector<cv::Rect>& balls, Score* s) {
-    const auto start = std::chrono::steady_clock::now();
-    opencv_.run(bgr, &opencv_blobs_);
-    const double ms = msSince(start);
-    std::vector<cv::Point2d> blobs;
-    for (const OpenCvBlob& b : opencv_blobs_) {
-      if (b.area >= static_cast<int>(kMinBlobArea)) blobs.emplace_back(b.cx, b.cy);
-    }
-    score(blobs, balls, ms, s);
-  }
-
- private:
-  ColorTable table_;
-  Segmenter segmenter_;
-  std::vector<Region> regions_;
-  OpenCvPipeline opencv_;  // cvtColor + inRange + connectedComponentsWithStats, 8-connected
-  std::vector<OpenCvBlob> opencv_blobs_;
-};
+using bench::BallMethods;
+using bench::BallScore;
+using Score = BallScore;
 
 struct FolderScores {
   std::string folder;
@@ -132,12 +51,12 @@ void learnedSequence(const std::vector<std::string>& paths, const ColorClass& ba
     if (bgr.empty()) throw std::runtime_error(paths[i] + ": cannot read the image");
     const auto start = std::chrono::steady_clock::now();
     stream.process(bgr, static_cast<double>(i) / 30.0, &frame);
-    const double ms = msSince(start);
+    const double ms = bench::msSince(start);
     std::vector<cv::Point2d> blobs;
     for (const TrackedBlob& b : frame.blobs) {
-      if (b.region.area >= kMinBlobArea) blobs.emplace_back(b.region.cx, b.region.cy);
+      if (b.region.area >= bench::kMinBallBlobArea) blobs.emplace_back(b.region.cx, b.region.cy);
     }
-    score(blobs, readYoloBoxes(yoloLabelPath(paths[i]), label_class, bgr.size()), ms, s);
+    bench::scoreBlobs(blobs, bench::ballTruth(readYoloBoxes(yoloLabelPath(paths[i]), label_class, bgr.size()), frame.field.boundary), ms, s);
   }
 }
 
@@ -148,9 +67,11 @@ FolderScores evaluateFolder(const std::string& folder, int label_class, const Co
   for (const std::string& path : imagesInFolder(folder)) {
     const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
     if (bgr.empty()) throw std::runtime_error(path + ": cannot read the image");
-    const std::vector<cv::Rect> balls = readYoloBoxes(yoloLabelPath(path), label_class, bgr.size());
-    methods->ours(bgr, balls, &f.ours, &f.on_field);
-    methods->opencv(bgr, balls, &f.opencv);
+    FieldResult field;
+    FieldDetector().detect(bgr, &field);  // the field colour seeded on this frame alone
+    const bench::BallTruth truth = bench::ballTruth(readYoloBoxes(yoloLabelPath(path), label_class, bgr.size()), field.boundary);
+    methods->ours(bgr, truth, field, &f.ours, &f.on_field);
+    methods->opencv(bgr, truth, &f.opencv);
   }
   return f;
 }
@@ -160,14 +81,6 @@ CalibrationResult calibrate(const std::string& folder, int label_class) {
   for (const std::string& path : imagesInFolder(folder)) examples.push_back(readYoloExample(path, label_class));
   if (examples.empty()) throw std::runtime_error(folder + ": no images to calibrate from");
   return calibrateColorClass(examples, "ball");
-}
-
-std::string scoreJson(const Score& s) {
-  std::ostringstream out;
-  out << "{\"frames\": " << s.frames << ", \"balls\": " << s.balls << ", \"found\": " << s.found
-      << ", \"recall_pct\": " << s.recall() << ", \"blobs\": " << s.blobs << ", \"blobs_on_ball\": " << s.on_ball
-      << ", \"precision_pct\": " << s.precision() << ", \"ms_per_frame\": " << s.msPerFrame() << "}";
-  return out.str();
 }
 
 void printRow(const std::string& folder, const std::string& method, const Score& s) {
@@ -206,14 +119,14 @@ void report(const std::string& calibrate_dir, const CalibrationResult& calibrati
     for (size_t m = 0; m < kMethods.size(); ++m) {
       printRow(name, kMethods[m].first, f.*kMethods[m].second);
       (total.*kMethods[m].second).add(f.*kMethods[m].second);
-      json << (m ? ", \"" : "\"") << kMethods[m].first << "\": " << scoreJson(f.*kMethods[m].second);
+      json << (m ? ", \"" : "\"") << kMethods[m].first << "\": " << bench::ballScoreJson(f.*kMethods[m].second);
     }
     json << "}";
   }
   json << "\n  },\n  \"methods\": {";
   for (size_t m = 0; m < kMethods.size(); ++m) {
     printRow("all", kMethods[m].first, total.*kMethods[m].second);
-    json << (m ? ", \"" : "\"") << kMethods[m].first << "\": " << scoreJson(total.*kMethods[m].second);
+    json << (m ? ", \"" : "\"") << kMethods[m].first << "\": " << bench::ballScoreJson(total.*kMethods[m].second);
   }
   json << "}\n}\n";
   if (!json_path.empty()) {

@@ -40,20 +40,6 @@ struct DateScore {
   double foundPct() const { return frames ? 100.0 * found / frames : 0; }
 };
 
-std::vector<std::string> imagesUnder(const std::string& dir) {
-  std::vector<std::string> images = imagesInFolder(dir);
-  std::vector<std::string> folders;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    if (entry.is_directory()) folders.push_back(entry.path().string());
-  }
-  std::sort(folders.begin(), folders.end());
-  for (const std::string& folder : folders) {
-    const std::vector<std::string> more = imagesUnder(folder);
-    images.insert(images.end(), more.begin(), more.end());
-  }
-  return images;
-}
-
 // One frame: the boundary, and each labelled object's bottom centre against it.
 void scoreFrame(const std::string& path, double margin_px, DateScore* s) {
   const cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
@@ -128,7 +114,7 @@ int main(int argc, char** argv) {
   double worst_robots = 100;
   for (const std::string& dir : dates) {
     DateScore s;
-    for (const std::string& path : imagesUnder(dir)) scoreFrame(path, margin_px, &s);
+    for (const std::string& path : imagesUnderFolder(dir)) scoreFrame(path, margin_px, &s);
     const std::string name = std::filesystem::path(dir).filename().string();
     printRow(name, s);
     addValues("dates." + name, s, &values);

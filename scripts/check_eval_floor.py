@@ -5,6 +5,7 @@ reaching the targets (docs/ARCHITECTURE.md, the issues' targets) is reported. Th
 rises: when a change improves a figure, raise it in bench/eval_floor.json in the same commit.
 
   check_eval_floor.py [--horizon EVAL_HORIZON.json] [--balls EVAL_BALLS.json] [--field EVAL_FIELD.json]
+                      [--balls-by-date EVAL_BALLS_BY_DATE.json]
                       --floor FLOOR.json"""
 import argparse
 import json
@@ -37,6 +38,14 @@ BALLS_LEARNING = 'ours, --sequence, learning from blobs'
 FIELD_CHECKS = [
     ('all.obstacle_on_field_pct', 'higher', 99.0),
     ('worst_date_obstacle_on_field_pct', 'higher', 99.0),
+]
+# The ball class calibrated on one date and scored on another, every pair of dates (grouped
+# cross-validation), keeping only blobs on the field side (issue 29's target: 80% precision on
+# every pair, at a recall of the balls on the field side no lower than without the filter).
+BALLS_BY_DATE_CHECKS = [
+    ('worst.ours_on_field.precision_pct', 'higher', 80.0),
+    ('all.ours_on_field.precision_pct', 'higher', None),
+    ('all.ours_on_field.recall_on_field_pct', 'higher', None),  # target: the same without the filter
 ]
 SLACK = 1e-6
 
@@ -81,6 +90,7 @@ def main():
     parser.add_argument('--horizon')
     parser.add_argument('--balls')
     parser.add_argument('--field')
+    parser.add_argument('--balls-by-date')
     parser.add_argument('--floor', required=True)
     args = parser.parse_args()
     floor = json.load(open(args.floor))
@@ -93,6 +103,11 @@ def main():
         failures += check('learning', methods[BALLS_LEARNING], floor['balls_learning'], BALL_CHECKS)
     if args.field:
         failures += check('field', json.load(open(args.field)), floor['field'], FIELD_CHECKS)
+    if args.balls_by_date:
+        result = json.load(open(args.balls_by_date))
+        targets = {'all.ours_on_field.precision_pct': None,
+                   'all.ours_on_field.recall_on_field_pct': result['all.ours.recall_on_field_pct']}
+        failures += check('by date', result, floor['balls_by_date'], BALLS_BY_DATE_CHECKS, targets_from=targets)
     if failures:
         print('[eval floor] below the floor of %s: %s' % (args.floor, ', '.join(failures)))
         return 1

@@ -214,6 +214,29 @@ def eval_field():
             '\n\n' + provenance('make eval', 'eval_field', d))
 
 
+def eval_balls_by_date():
+    d = load('eval_balls_by_date')
+    pairs = sorted({k.split('.')[1] for k in d if k.startswith('pairs.')})
+    methods = [('ours', 'fixed range'), ('ours_on_field', 'on the field side only')]
+
+    def cells(key):
+        out = []
+        for m, _ in methods:
+            out += ['%.1f%%' % d['%s.%s.recall_pct' % (key, m)], '%.1f%%' % d['%s.%s.recall_on_field_pct' % (key, m)],
+                    '%.1f%% of %d' % (d['%s.%s.precision_pct' % (key, m)], d['%s.%s.blobs' % (key, m)])]
+        return out
+    rows = [[p.replace('_to_', ' → '), int(d['pairs.%s.ours.balls' % p])] + cells('pairs.' + p) for p in pairs]
+    rows.append(['**all pairs**', int(d['all.ours.balls'])] + cells('all'))
+    worst = ['**worst pair**', ''] + sum([['%.1f%%' % d['worst.%s.recall_pct' % m],
+                                            '%.1f%%' % d['worst.%s.recall_on_field_pct' % m],
+                                            '%.1f%%' % d['worst.%s.precision_pct' % m]] for m, _ in methods], [])
+    rows.append(worst)
+    header = ['calibrated on → scored on', 'balls']
+    for _, name in methods:
+        header += ['recall (%s)' % name, 'recall of balls on the field side', 'blob precision']
+    return table(header, rows) + '\n\n' + provenance('make eval', 'eval_balls_by_date', d)
+
+
 def latency():
     d = load('latency')
     rows = []
@@ -242,7 +265,7 @@ def latency():
 
 WRITERS = {f.__name__: f for f in (tracker, tracker_noise, tracker_bounded, landmark, eval_horizon, eval_no_horizon,
                                    eval_robustness, eval_balls,
-                                   eval_balls_bound, eval_field, latency)}
+                                   eval_balls_bound, eval_field, eval_balls_by_date, latency)}
 
 
 def render(text):

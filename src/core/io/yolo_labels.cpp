@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -71,6 +72,21 @@ std::vector<std::string> imagesInFolder(const std::string& folder) {
   }
   std::sort(out.begin(), out.end());
   return out;
+}
+
+std::vector<std::string> imagesUnderFolder(const std::string& folder) {
+  std::vector<std::string> images = imagesInFolder(folder);
+  std::vector<std::string> folders;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+    if (entry.is_directory()) folders.push_back(entry.path().string());
+  }
+  std::sort(folders.begin(), folders.end());
+  for (const std::string& below : folders) {
+    const std::vector<std::string> more = imagesUnderFolder(below);
+    images.insert(images.end(), more.begin(), more.end());
+  }
+  return images;
 }
 
 }  // namespace rle_vision
