@@ -5,7 +5,7 @@ reaching the targets (docs/ARCHITECTURE.md, the issues' targets) is reported. Th
 rises: when a change improves a figure, raise it in bench/eval_floor.json in the same commit.
 
   check_eval_floor.py [--horizon EVAL_HORIZON.json] [--balls EVAL_BALLS.json] [--field EVAL_FIELD.json]
-                      [--balls-by-date EVAL_BALLS_BY_DATE.json]
+                      [--balls-by-date EVAL_BALLS_BY_DATE.json] [--verifier EVAL_VERIFIER.json]
                       --floor FLOOR.json"""
 import argparse
 import json
@@ -46,6 +46,13 @@ BALLS_BY_DATE_CHECKS = [
     ('worst.ours_on_field.precision_pct', 'higher', 80.0),
     ('all.ours_on_field.precision_pct', 'higher', None),
     ('all.ours_on_field.recall_on_field_pct', 'higher', None),  # target: the same without the filter
+]
+# The ball verifier (issue 30): each date held out, calibrated and trained on the others.
+VERIFIER_CHECKS = [
+    ('pooled.verified.recall_pct', 'higher', 93.0),
+    ('pooled.verified.precision_pct', 'higher', 93.0),
+    ('worst.verified.recall_pct', 'higher', 90.0),
+    ('worst.verified.precision_pct', 'higher', 90.0),
 ]
 SLACK = 1e-6
 
@@ -91,6 +98,7 @@ def main():
     parser.add_argument('--balls')
     parser.add_argument('--field')
     parser.add_argument('--balls-by-date')
+    parser.add_argument('--verifier')
     parser.add_argument('--floor', required=True)
     args = parser.parse_args()
     floor = json.load(open(args.floor))
@@ -108,6 +116,8 @@ def main():
         targets = {'all.ours_on_field.precision_pct': None,
                    'all.ours_on_field.recall_on_field_pct': result['all.ours.recall_on_field_pct']}
         failures += check('by date', result, floor['balls_by_date'], BALLS_BY_DATE_CHECKS, targets_from=targets)
+    if args.verifier:
+        failures += check('verifier', json.load(open(args.verifier)), floor['verifier'], VERIFIER_CHECKS)
     if failures:
         print('[eval floor] below the floor of %s: %s' % (args.floor, ', '.join(failures)))
         return 1

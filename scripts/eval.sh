@@ -10,7 +10,8 @@
 #    on the first folder (sorted) and scored on the others; writes eval_balls.json.
 #  - Balls by date: the robot frames' dates (EVAL_NEGATIVES_DIR), the class calibrated on each
 #    date in turn and scored on every other one, with and without the field side filter; writes
-#    eval_balls_by_date.json.
+#    eval_balls_by_date.json. And the ball verifier: each date held out, the class calibrated
+#    and the verifier trained on the others; writes eval_verifier.json.
 #  - Field boundary: the same robot frames, per date, each frame alone: how often a boundary is
 #    found and the share of labelled balls, robots and people it puts on the field side; writes
 #    eval_field.json.
@@ -26,7 +27,7 @@ done
 negatives_dir="${EVAL_NEGATIVES_DIR:-$ROOT/../shared/data/robocup_msl}"
 balls_dir="${EVAL_BALLS_DIR:-$ROOT/../shared/data/robocup_msl/20220716}"
 cd "$WS" && catkin_make -DRLE_VISION_BUILD_BENCHMARKS=ON -j"${JOBS:-2}" rle_vision_eval_horizon rle_vision_eval_balls \
-  rle_vision_eval_balls_by_date rle_vision_eval_field >/dev/null
+  rle_vision_eval_balls_by_date rle_vision_eval_verifier rle_vision_eval_field >/dev/null
 checked=()
 if (( ${#horizon_dirs[@]} )); then
   negatives=()
@@ -51,6 +52,10 @@ if [[ -d "$negatives_dir" ]]; then
   "$WS/devel/lib/rle_vision/rle_vision_eval_balls_by_date" --label-class "${EVAL_BALL_CLASS:-0}" \
     --json "$RESULTS_DIR/eval_balls_by_date.json" "$negatives_dir"
   if [[ -z "${EVAL_NEGATIVES_DIR:-}" ]]; then checked+=(--balls-by-date "$RESULTS_DIR/eval_balls_by_date.json"); fi
+  # The ball verifier (issue 30): each date held out, calibrated and trained on the others.
+  "$WS/devel/lib/rle_vision/rle_vision_eval_verifier" --label-class "${EVAL_BALL_CLASS:-0}" \
+    --json "$RESULTS_DIR/eval_verifier.json" "$negatives_dir"
+  if [[ -z "${EVAL_NEGATIVES_DIR:-}" ]]; then checked+=(--verifier "$RESULTS_DIR/eval_verifier.json"); fi
 fi
 # The field boundary on the same robot frames, every date on its own.
 if [[ -d "$negatives_dir" ]]; then
@@ -60,4 +65,4 @@ fi
 if (( ${#checked[@]} )); then
   python3 "$ROOT/scripts/check_eval_floor.py" "${checked[@]}" --floor "$ROOT/bench/eval_floor.json"
 fi
-report_results eval_horizon eval_balls eval_balls_by_date eval_field
+report_results eval_horizon eval_balls eval_balls_by_date eval_verifier eval_field

@@ -237,6 +237,24 @@ def eval_balls_by_date():
     return table(header, rows) + '\n\n' + provenance('make eval', 'eval_balls_by_date', d)
 
 
+def eval_verifier():
+    d = load('eval_verifier')
+    dates = sorted({k.split('.')[1] for k in d if k.startswith('dates.')})
+    methods = [('range', 'calibrated range alone'), ('candidates', 'candidates (range widened by %d)' % d['widen_levels']),
+               ('verified', 'candidates + verifier'), ('verified_on_field', 'candidates + verifier, field side only')]
+    rows = []
+    for g in dates + ['pooled']:
+        key = 'pooled' if g == 'pooled' else 'dates.' + g
+        for m, name in methods:
+            rows.append([('**%s**' % g) if g == 'pooled' else g, name, int(d['%s.%s.balls' % (key, m)]),
+                         '%.1f%%' % d['%s.%s.recall_pct' % (key, m)], '%.1f%%' % d['%s.%s.recall_on_field_pct' % (key, m)],
+                         '%.1f%% of %d' % (d['%s.%s.precision_pct' % (key, m)], d['%s.%s.blobs' % (key, m)])])
+    return (table(['held-out date', 'method', 'balls', 'recall', 'recall of balls on the field side', 'blob precision'],
+                  rows) + '\n\nVerifier time: %.1f µs a candidate (features and score), %.1f candidates a frame.\n\n'
+            % (d['pooled.verify_us_per_candidate'], d['pooled.candidates'] / max(1, d['pooled.frames'])) +
+            provenance('make eval', 'eval_verifier', d))
+
+
 def latency():
     d = load('latency')
     rows = []
@@ -265,7 +283,7 @@ def latency():
 
 WRITERS = {f.__name__: f for f in (tracker, tracker_noise, tracker_bounded, landmark, eval_horizon, eval_no_horizon,
                                    eval_robustness, eval_balls,
-                                   eval_balls_bound, eval_field, eval_balls_by_date, latency)}
+                                   eval_balls_bound, eval_field, eval_balls_by_date, eval_verifier, latency)}
 
 
 def render(text):

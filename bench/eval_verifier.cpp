@@ -1,0 +1,249 @@
+// make eval (ball verifier, issue 30): grouped cross-validation by date. For each date of DIR in
+// turn: the ball class calibrated on the other dates (rle_vision_calibrate's core), loosened by
+// --widen levels on every channel for recall; its blobs on the other dates' frames are the
+// candidates a verifier (verify/blob_verifier.h) is trained on (on a labelled ball: positive);
+// then the held-out date's candidates are scored and those at 0.5 or more kept. Beside it, on
+// the same frames: the calibrated range alone (what the tracker does without a verifier, and
+// what OpenCV's inRange pipeline finds at the same range), and the verifier with the field side
+// filter. Recall is over every labelled ball and over the balls on the field side.
+//
+//   rle_vision_eval_verifier [--label-class N] [--widen LEVELS] [--json OUT] DIR
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "ball_scoring.h"
+#include "harness.h"
+#include "rle_vision/io/yolo_labels.h"
+#include "rle_vision/learning/color_calibration.h"
+#include "rle_vision/verify/blob_verifier.h"
+
+namespace {
+
+using namespace rle_vision;
+using bench::BallScore;
+
+struct Date {
+  std::string name;
+  std::vector<std::string> images;
+};
+
+struct HeldOutScore {
+  BallScore range, loose, verified, verified_on_field;
+  int train_candidates = 0, train_positives = 0;
+  double verify_ms = 0;  // features and scores, all frames
+  int candidates = 0;
+  void add(const HeldOutScore& o) {
+    range.add(o.range), loose.add(o.loose), verified.add(o.verified), verified_on_field.add(o.verified_on_field);
+    train_candidates += o.train_candidates, train_positives += o.train_positives;
+    verify_ms += o.verify_ms, candidates += o.candidates;
+  }
+};
+
+const std::vector<std::pair<const char*, BallScore HeldOutScore::*>> kMethods = {
+    {"range", &HeldOutScore::range}, {"candidates", &HeldOutScore::loose}, {"verified", &HeldOutScore::verified},
+    {"verified_on_field", &HeldOutScore::verified_on_field}};
+const char* const kMethodNames[] = {"calibrated range alone (= OpenCV inRange)", "loosened range: the candidates",
+                                    "loosened range + verifier",
+                                    "loosened range + verifier, field side only"};
+
+ColorClass loosened(ColorClass c, int widen) {
+  for (int ch = 0; ch < 3; ++ch) {
+    c.min[ch] = static_cast<uint8_t>(std::max(0, c.min[ch] - widen));
+    c.max[ch] = static_cast<uint8_t>(std::min(255, c.max[ch] + widen));
+  }
+  return c;
+}
+
+ColorClass calibrateOn(const std::vector<const Date*>& dates, int label_class) {
+  std::vector<CalibrationExample> examples;
+  for (const Date* d : dates) {
+    for (const std::string& path : d->images) {
+      CalibrationExample e = readYoloExample(path, label_class);
+      if (!e.boxes.empty()) examples.push_back(std::move(e));
+    }
+  }
+  return calibrateColorClass(examples, "ball").color_class;
+}
+
+bool onBall(const Region& r, const std::vector<cv::Rect>& balls) {
+  for (const cv::Rect& b : balls) {
+    if (r.cx >= b.x && r.cx <= b.br().x - 1 && r.cy >= b.y && r.cy <= b.br().y - 1) return true;
+  }
+  return false;
+}
+
+// The candidates of `dates`' frames (blobs of `range`, area >= 20 px) and their labels.
+void collect(const std::vector<const Date*>& dates, const ColorClass& range, int label_class, cv::Mat* features,
+             std::vector<int>* labels) {
+  const ColorTable table({range});
+  Segmenter segmenter;
+  std::vector<Region> regions;
+  CandidateFeatures x;
+  for (const Date* d : dates) {
+    for (const std::string& path : d->images) {
+      const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
+      if (bgr.empty()) throw std::runtime_error(path + ": cannot read the image");
+      const std::vector<cv::Rect> balls = readYoloBoxes(yoloLabelPath(path), label_class, bgr.size());
+      segmenter.segment(bgr, PixelFormat::BGR8, table, &regions);
+      for (const Region& r : regions) {
+        if (r.area < bench::kMinBallBlobArea) continue;
+        candidateFeatures(bgr, r, &x);
+        features->push_back(cv::Mat(1, kCandidateFeatureCount, CV_32F, x.data()).clone());
+        labels->push_back(onBall(r, balls));
+      }
+    }
+  }
+}
+
+HeldOutScore evaluate(const Date& held_out, const std::vector<const Date*>& training, int label_class, int widen) {
+  HeldOutScore s;
+  const ColorClass calibrated = calibrateOn(training, label_class);
+  const ColorClass candidates_range = loosened(calibrated, widen);
+  cv::Mat features;
+  std::vector<int> labels;
+  collect(training, candidates_range, label_class, &features, &labels);
+  s.train_candidates = static_cast<int>(labels.size());
+  s.train_positives = static_cast<int>(std::count(labels.begin(), labels.end(), 1));
+  const BlobVerifier verifier = BlobVerifier::train(features, labels);
+  bench::BallMethods range_alone(calibrated);
+  const ColorTable table({candidates_range});
+  Segmenter segmenter;
+  std::vector<Region> regions;
+  CandidateFeatures x;
+  for (const std::string& path : held_out.images) {
+    const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
+    if (bgr.empty()) throw std::runtime_error(path + ": cannot read the image");
+    FieldResult field;
+    FieldDetector().detect(bgr, &field);
+    const bench::BallTruth truth =
+        bench::ballTruth(readYoloBoxes(yoloLabelPath(path), label_class, bgr.size()), field.boundary);
+    BallScore unused;
+    range_alone.ours(bgr, truth, field, &s.range, &unused);
+    const auto start = std::chrono::steady_clock::now();
+    segmenter.segment(bgr, PixelFormat::BGR8, table, &regions);
+    std::vector<cv::Point2d> kept, kept_on_field, all;
+    for (const Region& r : regions) {
+      if (r.area < bench::kMinBallBlobArea) continue;
+      ++s.candidates;
+      all.emplace_back(r.cx, r.cy);
+      candidateFeatures(bgr, r, &x);
+      if (verifier.score(x) < 0.5f) continue;
+      kept.emplace_back(r.cx, r.cy);
+      if (!field.boundary.found || field.boundary.heightAbove(r.cx, r.bottom_at_cx) <= bench::kOnFieldMarginPx) {
+        kept_on_field.emplace_back(r.cx, r.cy);
+      }
+    }
+    const double ms = bench::msSince(start);
+    s.verify_ms += ms;
+    bench::scoreBlobs(all, truth, 0, &s.loose);
+    bench::scoreBlobs(kept, truth, ms, &s.verified);
+    bench::scoreBlobs(kept_on_field, truth, ms + field.ms, &s.verified_on_field);
+  }
+  return s;
+}
+
+void printRow(const std::string& date, const char* method, const BallScore& b) {
+  std::printf("%-10s %-46s %6d %7.1f %7.1f %6d %9.1f %8.3f\n", date.c_str(), method, b.balls, b.recall(),
+              b.fieldRecall(), b.blobs, b.precision(), b.msPerFrame());
+}
+
+void addValues(const std::string& prefix, const HeldOutScore& s, std::vector<std::pair<std::string, double>>* values) {
+  for (const auto& m : kMethods) {
+    const BallScore& b = s.*m.second;
+    const std::string key = prefix + "." + m.first + ".";
+    values->emplace_back(key + "balls", b.balls);
+    values->emplace_back(key + "recall_pct", b.recall());
+    values->emplace_back(key + "recall_on_field_pct", b.fieldRecall());
+    values->emplace_back(key + "blobs", b.blobs);
+    values->emplace_back(key + "precision_pct", b.precision());
+  }
+  values->emplace_back(prefix + ".train_candidates", s.train_candidates);
+  values->emplace_back(prefix + ".train_positives", s.train_positives);
+  values->emplace_back(prefix + ".candidates", s.candidates);
+  values->emplace_back(prefix + ".frames", s.range.frames);
+  values->emplace_back(prefix + ".verify_us_per_candidate", s.candidates ? 1000.0 * s.verify_ms / s.candidates : 0);
+}
+
+std::vector<Date> datesIn(const std::string& root) {
+  std::vector<Date> dates;
+  if (root.empty() || !std::filesystem::is_directory(root)) return dates;
+  for (const auto& entry : std::filesystem::directory_iterator(root)) {
+    if (entry.is_directory()) dates.push_back({entry.path().filename().string(), imagesUnderFolder(entry.path().string())});
+  }
+  std::sort(dates.begin(), dates.end(), [](const Date& a, const Date& b) { return a.name < b.name; });
+  return dates;
+}
+
+void run(const std::vector<Date>& dates, int label_class, int widen, const std::string& json) {
+  std::printf("rle_vision eval (ball verifier): each date held out, calibrated and trained on the others; "
+              "candidates: the calibrated range widened by %d levels\n", widen);
+  std::printf("%-10s %-46s %6s %7s %7s %6s %9s %8s\n", "held out", "method", "balls", "recall", "field-r", "blobs",
+              "precision", "ms/frame");
+  std::vector<std::pair<std::string, double>> values;
+  HeldOutScore all;
+  std::map<std::string, double> worst;
+  for (const Date& held_out : dates) {
+    std::vector<const Date*> training;
+    for (const Date& d : dates) {
+      if (&d != &held_out) training.push_back(&d);
+    }
+    const HeldOutScore s = evaluate(held_out, training, label_class, widen);
+    for (size_t m = 0; m < kMethods.size(); ++m) printRow(held_out.name, kMethodNames[m], s.*kMethods[m].second);
+    addValues("dates." + held_out.name, s, &values);
+    all.add(s);
+    for (const auto& m : kMethods) {
+      const BallScore& b = s.*m.second;
+      for (const auto& f : {std::make_pair("precision_pct", b.precision()), std::make_pair("recall_pct", b.recall())}) {
+        const std::string key = std::string("worst.") + m.first + "." + f.first;
+        worst[key] = worst.count(key) ? std::min(worst[key], f.second) : f.second;
+      }
+    }
+  }
+  for (size_t m = 0; m < kMethods.size(); ++m) printRow("pooled", kMethodNames[m], all.*kMethods[m].second);
+  std::printf("verifier: %.1f us per candidate (features and score), %.1f candidates per frame\n",
+              all.candidates ? 1000.0 * all.verify_ms / all.candidates : 0.0,
+              all.range.frames ? static_cast<double>(all.candidates) / all.range.frames : 0.0);
+  for (const auto& w : worst) std::printf("%-40s %6.1f\n", w.first.c_str(), w.second);
+  addValues("pooled", all, &values);
+  for (const auto& w : worst) values.emplace_back(w.first, w.second);
+  values.emplace_back("widen_levels", widen);
+  if (!json.empty()) bench::writeJson(json, values);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string root, json, label_class = "0", widen = "16";
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if ((arg == "--json" || arg == "--label-class" || arg == "--widen") && i + 1 < argc) {
+      (arg == "--json" ? json : arg == "--widen" ? widen : label_class) = argv[++i];
+    } else {
+      root = arg;
+    }
+  }
+  const std::vector<Date> dates = datesIn(root);
+  const bool numbers = !label_class.empty() && label_class.find_first_not_of("0123456789") == std::string::npos &&
+                       label_class.size() <= 6 && !widen.empty() && widen.find_first_not_of("0123456789") == std::string::npos &&
+                       widen.size() <= 3;
+  if (dates.size() < 2 || !numbers) {
+    std::cerr << "usage: rle_vision_eval_verifier [--label-class N] [--widen LEVELS] [--json OUT] DIR (its folders: "
+                 "two or more dates)\n";
+    return 2;
+  }
+  bench::pinToOneCpu();
+  try {
+    run(dates, std::stoi(label_class), std::stoi(widen), json);
+  } catch (const std::exception& e) {
+    std::cerr << "rle_vision_eval_verifier: " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}

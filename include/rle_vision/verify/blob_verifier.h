@@ -1,0 +1,58 @@
+// A verifier learned from labelled frames: colour proposes candidates (the tracker's blobs of a
+// permissive range), a small model decides which candidates are the object. The model is
+// OpenCV's ml Boost (Real AdaBoost on depth-2 trees): deterministic, small (a few tens of KB),
+// microseconds a candidate.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "rle_vision/verify/candidate_features.h"
+
+namespace cv {
+namespace ml {
+class Boost;
+}  // namespace ml
+}  // namespace cv
+
+namespace rle_vision {
+
+struct VerifierTrainOptions {
+  int weak_count = 100;   // boosted trees
+  int max_depth = 2;      // of each tree
+  // Negatives usually outnumber positives many times: each class's samples are weighted so that
+  // both classes weigh the same in training.
+  bool balance_classes = true;
+};
+
+class BlobVerifier {
+ public:
+  BlobVerifier();
+  ~BlobVerifier();
+  BlobVerifier(BlobVerifier&&) noexcept;
+  BlobVerifier& operator=(BlobVerifier&&) noexcept;
+
+  // `features`: one row per candidate (CV_32F, kCandidateFeatureCount columns); `is_object`: 1
+  // for candidates on a labelled object, 0 for the others. Throws std::invalid_argument when
+  // either class has no sample or the sizes disagree.
+  static BlobVerifier train(const cv::Mat& features, const std::vector<int>& is_object,
+                            const VerifierTrainOptions& options = VerifierTrainOptions());
+
+  bool trained() const;
+  // The candidate's score in [0, 1] (a logistic of the boosted sum: 0.5 is the decision
+  // boundary); 0 without a model.
+  float score(const CandidateFeatures& features) const;
+
+  // The model as a YAML or XML file (OpenCV FileStorage), with the feature count checked on
+  // load. Both throw std::runtime_error with the path and the reason.
+  void save(const std::string& path) const;
+  static BlobVerifier load(const std::string& path);
+
+ private:
+  cv::Ptr<cv::ml::Boost> model_;
+};
+
+}  // namespace rle_vision

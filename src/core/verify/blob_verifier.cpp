@@ -1,0 +1,92 @@
+#include "rle_vision/verify/blob_verifier.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <opencv2/ml.hpp>
+
+namespace rle_vision {
+
+BlobVerifier::BlobVerifier() = default;
+BlobVerifier::~BlobVerifier() = default;
+BlobVerifier::BlobVerifier(BlobVerifier&&) noexcept = default;
+BlobVerifier& BlobVerifier::operator=(BlobVerifier&&) noexcept = default;
+
+BlobVerifier BlobVerifier::train(const cv::Mat& features, const std::vector<int>& is_object,
+                                 const VerifierTrainOptions& options) {
+  if (features.type() != CV_32F || features.cols != kCandidateFeatureCount ||
+      features.rows != static_cast<int>(is_object.size())) {
+    throw std::invalid_argument("verifier training: features must be CV_32F, one row of " +
+                                std::to_string(kCandidateFeatureCount) + " per candidate label");
+  }
+  int positives = 0;
+  for (int label : is_object) positives += label != 0;
+  const int negatives = static_cast<int>(is_object.size()) - positives;
+  if (positives == 0 || negatives == 0) {
+    throw std::invalid_argument("verifier training needs candidates on objects and off them (got " +
+                                std::to_string(positives) + " on, " + std::to_string(negatives) + " off)");
+  }
+  cv::Mat responses(static_cast<int>(is_object.size()), 1, CV_32S);
+  cv::Mat weights(static_cast<int>(is_object.size()), 1, CV_32F);
+  for (size_t i = 0; i < is_object.size(); ++i) {
+    responses.at<int>(static_cast<int>(i)) = is_object[i] ? 1 : 0;
+    weights.at<float>(static_cast<int>(i)) =
+        options.balance_classes ? 0.5f / (is_object[i] ? positives : negatives) * is_object.size() : 1.0f;
+  }
+  BlobVerifier verifier;
+  verifier.model_ = cv::ml::Boost::create();
+  verifier.model_->setBoostType(cv::ml::Boost::REAL);
+  verifier.model_->setWeakCount(options.weak_count);
+  verifier.model_->setMaxDepth(options.max_depth);
+  verifier.model_->setWeightTrimRate(0);  // every sample in every round: the same model every time
+  verifier.model_->setUseSurrogates(false);
+  const cv::Ptr<cv::ml::TrainData> data = cv::ml::TrainData::create(
+      features, cv::ml::ROW_SAMPLE, responses, cv::noArray(), cv::noArray(), weights);
+  verifier.model_->train(data);
+  return verifier;
+}
+
+bool BlobVerifier::trained() const { return model_ && model_->isTrained(); }
+
+float BlobVerifier::score(const CandidateFeatures& features) const {
+  if (!trained()) return 0.0f;
+  const cv::Mat row(1, kCandidateFeatureCount, CV_32F, const_cast<float*>(features.data()));
+  // Real AdaBoost's sum estimates half the log-odds of the object class.
+  const float sum = model_->predict(row, cv::noArray(), cv::ml::DTrees::PREDICT_SUM);
+  return 1.0f / (1.0f + std::exp(-2.0f * sum));
+}
+
+void BlobVerifier::save(const std::string& path) const {
+  if (!trained()) throw std::runtime_error(path + ": no trained verifier to save");
+  cv::FileStorage file(path, cv::FileStorage::WRITE);
+  if (!file.isOpened()) throw std::runtime_error(path + ": cannot write the verifier file");
+  file << "rle_vision_verifier" << "{";
+  file << "feature_count" << kCandidateFeatureCount;
+  file << "model" << "{";
+  model_->write(file);
+  file << "}" << "}";
+}
+
+BlobVerifier BlobVerifier::load(const std::string& path) {
+  cv::FileStorage file;
+  try {
+    file.open(path, cv::FileStorage::READ);
+  } catch (const cv::Exception& e) {
+    throw std::runtime_error(path + ": not a verifier file (" + e.msg + ")");
+  }
+  if (!file.isOpened()) throw std::runtime_error(path + ": cannot read the verifier file");
+  const cv::FileNode root = file["rle_vision_verifier"];
+  if (root.empty() || root["model"].empty()) throw std::runtime_error(path + ": not a verifier file (rle_vision_train writes them)");
+  if (static_cast<int>(root["feature_count"]) != kCandidateFeatureCount) {
+    throw std::runtime_error(path + ": made for " + std::to_string(static_cast<int>(root["feature_count"])) +
+                             " features, this version computes " + std::to_string(kCandidateFeatureCount) +
+                             ": train it again with rle_vision_train");
+  }
+  BlobVerifier verifier;
+  verifier.model_ = cv::ml::Boost::create();
+  verifier.model_->read(root["model"]);
+  if (!verifier.model_->isTrained()) throw std::runtime_error(path + ": the verifier file holds no trained model");
+  return verifier;
+}
+
+}  // namespace rle_vision

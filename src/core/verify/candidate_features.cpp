@@ -1,0 +1,120 @@
+#include "rle_vision/verify/candidate_features.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+namespace rle_vision {
+namespace {
+
+constexpr int kPatch = 16;      // the appearance patch: the box plus a margin, resized to 16x16
+constexpr int kCell = 8;        // gradient orientation cells: 2x2 of 8x8 px
+constexpr int kOrientations = 8;
+constexpr int kChromaGrid = 4;  // U and V averaged on a 4x4 grid
+constexpr int kRingGrid = 32;   // the box and its ring's colours: sampled on a 32x32 grid
+
+// The box grown by `margin` (a share of its larger side, at least 2 px), clipped to the image.
+cv::Rect grown(const Region& r, double margin, const cv::Size& size) {
+  const int w = r.right - r.left + 1, h = r.bottom - r.top + 1;
+  const int m = std::max(2, static_cast<int>(std::lround(margin * std::max(w, h))));
+  return cv::Rect(r.left - m, r.top - m, w + 2 * m, h + 2 * m) & cv::Rect(cv::Point(), size);
+}
+
+// Mean and standard deviation of the YUV pixels of `yuv` inside `inner` (or, with `ring`,
+// outside `inner`).
+void yuvStats(const cv::Mat& yuv, const cv::Rect& inner, bool ring, double mean[3], double sd[3]) {
+  double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+  size_t n = 0;
+  for (int y = 0; y < yuv.rows; ++y) {
+    const cv::Vec3b* row = yuv.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < yuv.cols; ++x) {
+      if (inner.contains(cv::Point(x, y)) == ring) continue;
+      for (int c = 0; c < 3; ++c) sum[c] += row[x][c], sum2[c] += row[x][c] * row[x][c];
+      ++n;
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    mean[c] = n ? sum[c] / n : 0;
+    sd[c] = n ? std::sqrt(std::max(0.0, sum2[c] / n - mean[c] * mean[c])) : 0;
+  }
+}
+
+// Gradient orientation histograms (unsigned, magnitude-weighted) of the grey patch per cell,
+// the whole descriptor L2-normalised.
+void orientations(const cv::Mat& grey, float* out) {
+  std::fill(out, out + (kPatch / kCell) * (kPatch / kCell) * kOrientations, 0.0f);
+  for (int y = 1; y < kPatch - 1; ++y) {
+    for (int x = 1; x < kPatch - 1; ++x) {
+      const float gx = grey.at<float>(y, x + 1) - grey.at<float>(y, x - 1);
+      const float gy = grey.at<float>(y + 1, x) - grey.at<float>(y - 1, x);
+      const float magnitude = std::sqrt(gx * gx + gy * gy);
+      float angle = std::atan2(gy, gx);
+      if (angle < 0) angle += static_cast<float>(M_PI);
+      const int bin = std::min(kOrientations - 1, static_cast<int>(angle / M_PI * kOrientations));
+      out[((y / kCell) * (kPatch / kCell) + x / kCell) * kOrientations + bin] += magnitude;
+    }
+  }
+  const int count = (kPatch / kCell) * (kPatch / kCell) * kOrientations;
+  double norm = 1e-6;
+  for (int i = 0; i < count; ++i) norm += out[i] * out[i];
+  norm = std::sqrt(norm);
+  for (int i = 0; i < count; ++i) out[i] = static_cast<float>(out[i] / norm);
+}
+
+}  // namespace
+
+void candidateFeatures(const cv::Mat& bgr, const Region& r, CandidateFeatures* out, cv::Mat* patch_bgr,
+                       cv::Mat* patch_yuv) {
+  cv::Mat local_bgr, local_yuv;
+  cv::Mat& patch = patch_bgr ? *patch_bgr : local_bgr;
+  cv::Mat& yuv = patch_yuv ? *patch_yuv : local_yuv;
+  float* f = out->data();
+  const double w = r.right - r.left + 1, h = r.bottom - r.top + 1;
+  // The blob: size, fill of its box, aspect, roundness (minor / major axis), row and column in
+  // the view (size against row: where a ball of this size can be).
+  const double trace = r.var_xx + r.var_yy, det = r.var_xx * r.var_yy - r.var_xy * r.var_xy;
+  const double disc = std::sqrt(std::max(0.0, trace * trace / 4 - det));
+  const double major = trace / 2 + disc, minor = std::max(0.0, trace / 2 - disc);
+  *f++ = static_cast<float>(std::log(std::max<uint32_t>(1, r.area)));
+  *f++ = static_cast<float>(r.area / (w * h));
+  *f++ = static_cast<float>(std::log(w / h));
+  *f++ = static_cast<float>(major > 0 ? std::sqrt(minor / major) : 1.0);
+  *f++ = static_cast<float>(r.cy / std::max(1, bgr.rows));
+  *f++ = static_cast<float>(r.cx / std::max(1, bgr.cols));
+  // Colour: the box's, and a ring around it (half the box's larger side wide), sampled on a
+  // 32x32 grid over the ring's outer box: the cost does not grow with the blob.
+  const cv::Rect box(r.left, r.top, static_cast<int>(w), static_cast<int>(h));
+  const cv::Rect around = grown(r, 0.5, bgr.size());
+  cv::resize(bgr(around), patch, cv::Size(kRingGrid, kRingGrid), 0, 0, cv::INTER_NEAREST);
+  cv::cvtColor(patch, yuv, cv::COLOR_BGR2YUV);
+  const double sx = static_cast<double>(kRingGrid) / around.width, sy = static_cast<double>(kRingGrid) / around.height;
+  const cv::Rect inner(static_cast<int>(std::floor((box.x - around.x) * sx)), static_cast<int>(std::floor((box.y - around.y) * sy)),
+                       std::max(1, static_cast<int>(std::ceil(box.width * sx))), std::max(1, static_cast<int>(std::ceil(box.height * sy))));
+  double box_mean[3], box_sd[3], ring_mean[3], ring_sd[3];
+  yuvStats(yuv, inner, false, box_mean, box_sd);
+  yuvStats(yuv, inner, true, ring_mean, ring_sd);
+  for (int c = 0; c < 3; ++c) *f++ = static_cast<float>(box_mean[c] / 255.0);
+  for (int c = 0; c < 3; ++c) *f++ = static_cast<float>(box_sd[c] / 255.0);
+  for (int c = 0; c < 3; ++c) *f++ = static_cast<float>(ring_mean[c] / 255.0);
+  for (int c = 0; c < 3; ++c) *f++ = static_cast<float>((box_mean[c] - ring_mean[c]) / 255.0);
+  // Appearance: the box plus a quarter margin, 16x16 (small boxes averaged, large ones sampled).
+  const cv::Rect appearance = grown(r, 0.25, bgr.size());
+  cv::resize(bgr(appearance), patch, cv::Size(kPatch, kPatch), 0, 0,
+             appearance.width <= 2 * kPatch && appearance.height <= 2 * kPatch ? cv::INTER_AREA : cv::INTER_LINEAR);
+  cv::Mat grey;
+  cv::cvtColor(patch, grey, cv::COLOR_BGR2GRAY);
+  grey.convertTo(grey, CV_32F, 1.0 / 255.0);
+  orientations(grey, f);
+  f += (kPatch / kCell) * (kPatch / kCell) * kOrientations;
+  cv::Mat chroma;
+  cv::cvtColor(patch, chroma, cv::COLOR_BGR2YUV);
+  cv::resize(chroma, chroma, cv::Size(kChromaGrid, kChromaGrid), 0, 0, cv::INTER_AREA);
+  for (int c = 1; c <= 2; ++c) {
+    for (int y = 0; y < kChromaGrid; ++y) {
+      for (int x = 0; x < kChromaGrid; ++x) *f++ = static_cast<float>(chroma.at<cv::Vec3b>(y, x)[c] / 255.0);
+    }
+  }
+}
+
+}  // namespace rle_vision
