@@ -23,6 +23,7 @@
 #include "rle_vision/io/yolo_labels.h"
 #include "rle_vision/learning/color_calibration.h"
 #include "rle_vision/verify/blob_verifier.h"
+#include "rle_vision/verify/verifier_training.h"
 
 namespace {
 
@@ -53,14 +54,6 @@ const char* const kMethodNames[] = {"calibrated range alone (= OpenCV inRange)",
                                     "loosened range + verifier",
                                     "loosened range + verifier, field side only"};
 
-ColorClass loosened(ColorClass c, int widen) {
-  for (int ch = 0; ch < 3; ++ch) {
-    c.min[ch] = static_cast<uint8_t>(std::max(0, c.min[ch] - widen));
-    c.max[ch] = static_cast<uint8_t>(std::min(255, c.max[ch] + widen));
-  }
-  return c;
-}
-
 ColorClass calibrateOn(const std::vector<const Date*>& dates, int label_class) {
   std::vector<CalibrationExample> examples;
   for (const Date* d : dates) {
@@ -72,46 +65,27 @@ ColorClass calibrateOn(const std::vector<const Date*>& dates, int label_class) {
   return calibrateColorClass(examples, "ball").color_class;
 }
 
-bool onBall(const Region& r, const std::vector<cv::Rect>& balls) {
-  for (const cv::Rect& b : balls) {
-    if (r.cx >= b.x && r.cx <= b.br().x - 1 && r.cy >= b.y && r.cy <= b.br().y - 1) return true;
-  }
-  return false;
-}
-
-// The candidates of `dates`' frames (blobs of `range`, area >= 20 px) and their labels.
-void collect(const std::vector<const Date*>& dates, const ColorClass& range, int label_class, cv::Mat* features,
-             std::vector<int>* labels) {
-  const ColorTable table({range});
-  Segmenter segmenter;
-  std::vector<Region> regions;
-  CandidateFeatures x;
+// The candidates of `dates`' frames (blobs of `range`) and their labels.
+VerifierTrainingSet collect(const std::vector<const Date*>& dates, const ColorClass& range, int label_class) {
+  VerifierTrainingSet set(range, bench::kMinBallBlobArea);
   for (const Date* d : dates) {
     for (const std::string& path : d->images) {
       const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
       if (bgr.empty()) throw std::runtime_error(path + ": cannot read the image");
-      const std::vector<cv::Rect> balls = readYoloBoxes(yoloLabelPath(path), label_class, bgr.size());
-      segmenter.segment(bgr, PixelFormat::BGR8, table, &regions);
-      for (const Region& r : regions) {
-        if (r.area < bench::kMinBallBlobArea) continue;
-        candidateFeatures(bgr, r, &x);
-        features->push_back(cv::Mat(1, kCandidateFeatureCount, CV_32F, x.data()).clone());
-        labels->push_back(onBall(r, balls));
-      }
+      set.addFrame(bgr, readYoloBoxes(yoloLabelPath(path), label_class, bgr.size()));
     }
   }
+  return set;
 }
 
 HeldOutScore evaluate(const Date& held_out, const std::vector<const Date*>& training, int label_class, int widen) {
   HeldOutScore s;
   const ColorClass calibrated = calibrateOn(training, label_class);
-  const ColorClass candidates_range = loosened(calibrated, widen);
-  cv::Mat features;
-  std::vector<int> labels;
-  collect(training, candidates_range, label_class, &features, &labels);
-  s.train_candidates = static_cast<int>(labels.size());
-  s.train_positives = static_cast<int>(std::count(labels.begin(), labels.end(), 1));
-  const BlobVerifier verifier = BlobVerifier::train(features, labels);
+  const ColorClass candidates_range = widenedRange(calibrated, widen);
+  const VerifierTrainingSet set = collect(training, candidates_range, label_class);
+  s.train_candidates = static_cast<int>(set.labels().size());
+  s.train_positives = set.positives();
+  const BlobVerifier verifier = BlobVerifier::train(set.features(), set.labels());
   bench::BallMethods range_alone(calibrated);
   const ColorTable table({candidates_range});
   Segmenter segmenter;

@@ -10,6 +10,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "rle_vision/color/color_class.h"
 #include "rle_vision/verify/candidate_features.h"
 
 namespace cv {
@@ -46,13 +47,19 @@ class BlobVerifier {
   // boundary); 0 without a model.
   float score(const CandidateFeatures& features) const;
 
-  // The model as a YAML or XML file (OpenCV FileStorage), with the feature count checked on
-  // load. Both throw std::runtime_error with the path and the reason.
+  // The permissive colour range whose blobs are the candidates (kept in the model file: the
+  // verifier was trained on that range's blobs and judges them only).
+  void setCandidateRange(const ColorClass& range) { candidate_range_ = range; }
+  const ColorClass& candidateRange() const { return candidate_range_; }
+
+  // The model and the candidate range as a YAML or XML file (OpenCV FileStorage), with the
+  // feature count checked on load. Both throw std::runtime_error with the path and the reason.
   void save(const std::string& path) const;
   static BlobVerifier load(const std::string& path);
 
  private:
   cv::Ptr<cv::ml::Boost> model_;
+  ColorClass candidate_range_;
 };
 
 }  // namespace rle_vision

@@ -1,5 +1,6 @@
 #include "rle_vision/verify/blob_verifier.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -62,6 +63,10 @@ void BlobVerifier::save(const std::string& path) const {
   if (!file.isOpened()) throw std::runtime_error(path + ": cannot write the verifier file");
   file << "rle_vision_verifier" << "{";
   file << "feature_count" << kCandidateFeatureCount;
+  const ColorClass& c = candidate_range_;
+  file << "candidate_range" << "{" << "name" << c.name << "space" << toString(c.space) << "min"
+       << std::vector<int>{c.min[0], c.min[1], c.min[2]} << "max" << std::vector<int>{c.max[0], c.max[1], c.max[2]}
+       << "min_area_px" << static_cast<int>(c.min_area_px) << "}";
   file << "model" << "{";
   model_->write(file);
   file << "}" << "}";
@@ -83,6 +88,19 @@ BlobVerifier BlobVerifier::load(const std::string& path) {
                              ": train it again with rle_vision_train");
   }
   BlobVerifier verifier;
+  const cv::FileNode range = root["candidate_range"];
+  std::vector<int> lo, hi;
+  if (!range.empty()) range["min"] >> lo, range["max"] >> hi;
+  if (range.empty() || lo.size() != 3 || hi.size() != 3 || !parseColorSpace(static_cast<std::string>(range["space"]), &verifier.candidate_range_.space)) {
+    throw std::runtime_error(path + ": the verifier file holds no usable candidate_range (name, space, min, max)");
+  }
+  verifier.candidate_range_.name = static_cast<std::string>(range["name"]);
+  verifier.candidate_range_.min_area_px = static_cast<uint32_t>(std::max(1, static_cast<int>(range["min_area_px"])));
+  for (int c = 0; c < 3; ++c) {
+    if (lo[c] < 0 || lo[c] > 255 || hi[c] < 0 || hi[c] > 255) throw std::runtime_error(path + ": candidate_range out of 0..255");
+    verifier.candidate_range_.min[c] = static_cast<uint8_t>(lo[c]);
+    verifier.candidate_range_.max[c] = static_cast<uint8_t>(hi[c]);
+  }
   verifier.model_ = cv::ml::Boost::create();
   verifier.model_->read(root["model"]);
   if (!verifier.model_->isTrained()) throw std::runtime_error(path + ": the verifier file holds no trained model");

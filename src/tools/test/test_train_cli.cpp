@@ -1,0 +1,83 @@
+// rle_vision_train on folders of synthetic labelled frames (a shaded ball among same-coloured
+// shapes): it writes a verifier that loads and keeps the balls, prints the held-out figures of
+// each folder, and refuses bad input with a one-line reason and exit status 2.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "rle_vision/verify/blob_verifier.h"
+#include "testing/test_helpers.h"
+#include "testing/verifier_scenes.h"
+
+namespace rle_vision {
+namespace {
+
+std::string run(const std::string& command, int* status) {
+  std::string out;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  char buffer[4096];
+  while (size_t n = fread(buffer, 1, sizeof(buffer), pipe)) out.append(buffer, n);
+  *status = WEXITSTATUS(pclose(pipe));
+  return out;
+}
+
+// `frames` labelled frames in `folder` (YOLO: class 0, the ball; `labels` false: none).
+void writeFolder(const std::string& folder, int frames, uint64_t seed, bool labels = true) {
+  ASSERT_EQ(std::system(("rm -rf " + folder + " && mkdir -p " + folder).c_str()), 0);
+  cv::RNG rng(seed);
+  for (int i = 0; i < frames; ++i) {
+    const test::VerifierFrame f = test::drawVerifierFrame(rng);
+    const std::string name = folder + "/frame_" + std::to_string(i);
+    ASSERT_TRUE(cv::imwrite(name + ".png", f.bgr));
+    std::ofstream label(name + ".txt");
+    for (const cv::Rect& b : f.balls) {
+      if (!labels) continue;
+      label << "0 " << (b.x + 0.5 * b.width) / f.bgr.cols << " " << (b.y + 0.5 * b.height) / f.bgr.rows << " "
+            << static_cast<double>(b.width) / f.bgr.cols << " " << static_cast<double>(b.height) / f.bgr.rows << "\n";
+    }
+  }
+}
+
+TEST(TrainCli, WritesAVerifierThatLoadsAndReportsHeldOutFolders) {
+  const std::string dir = testing::TempDir() + "/rle_vision_train";
+  writeFolder(dir + "/a", 30, 1);
+  writeFolder(dir + "/b", 30, 2);
+  int status = 0;
+  const std::string out = run(std::string(RLE_VISION_TRAIN) + " --class ball --label-class 0 --output " + dir +
+                                  "/ball_verifier.yml " + dir + "/a " + dir + "/b",
+                              &status);
+  ASSERT_EQ(status, 0) << out;
+  EXPECT_NE(out.find("held out " + dir + "/a"), std::string::npos) << out;
+  EXPECT_NE(out.find("held out " + dir + "/b"), std::string::npos) << out;
+  const BlobVerifier verifier = BlobVerifier::load(dir + "/ball_verifier.yml");
+  EXPECT_TRUE(verifier.trained());
+  EXPECT_EQ(verifier.candidateRange().name, "ball");
+  std::printf("%s", out.c_str());
+}
+
+TEST(TrainCli, BadInputGetsOneLineAndStatusTwo) {
+  const std::string dir = testing::TempDir() + "/rle_vision_train_bad";
+  writeFolder(dir + "/unlabelled", 3, 3, false);
+  ASSERT_EQ(std::system(("mkdir -p " + dir + "/empty").c_str()), 0);
+  const std::string train = std::string(RLE_VISION_TRAIN) + " --class ball --label-class 0 --output " + dir + "/v.yml ";
+  int status = 0;
+  std::string out = run(train + dir + "/unlabelled", &status);
+  EXPECT_EQ(status, 2);
+  EXPECT_NE(out.find("rle_vision_train: no box of label class 0"), std::string::npos) << out;
+  out = run(train + dir + "/empty", &status);
+  EXPECT_EQ(status, 2);
+  EXPECT_NE(out.find("no .jpg, .jpeg or .png images"), std::string::npos) << out;
+  out = run(std::string(RLE_VISION_TRAIN) + " --class ball " + dir + "/unlabelled", &status);
+  EXPECT_EQ(status, 2);
+  EXPECT_NE(out.find("usage: rle_vision_train"), std::string::npos) << out;
+  out = run(std::string(RLE_VISION_TRAIN) + " --class ball --label-class x --output v.yml " + dir, &status);
+  EXPECT_EQ(status, 2);
+}
+
+}  // namespace
+}  // namespace rle_vision

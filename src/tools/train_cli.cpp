@@ -1,0 +1,144 @@
+// rle_vision_train: a verifier for a colour class from labelled frames (verify/blob_verifier.h).
+// The class's range is calibrated on the labelled boxes (rle_vision_calibrate's core) and
+// widened for recall; its blobs are the candidates; those on a labelled box are the positives.
+// Each FOLDER is a group (a recording, a date): with two or more, every group is held out in
+// turn and the verifier trained on the others scores its candidates (grouped cross-validation).
+//
+//   rle_vision_train --class NAME --label-class N [--widen LEVELS] --output FILE FOLDER...
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "rle_vision/io/yolo_labels.h"
+#include "rle_vision/learning/color_calibration.h"
+#include "rle_vision/verify/blob_verifier.h"
+#include "rle_vision/verify/verifier_training.h"
+
+namespace {
+
+using namespace rle_vision;
+
+const char* kUsage =
+    "usage: rle_vision_train --class NAME --label-class N [--widen LEVELS] --output FILE FOLDER...\n"
+    "  --class NAME       the class the verifier is for (the colour class of that name)\n"
+    "  --label-class N    its boxes: class N of the YOLO label file beside each image\n"
+    "  --widen LEVELS     the candidates' range: the calibrated one widened by this on every channel (default 16)\n"
+    "  --output FILE      the verifier (YAML: the model and the candidates' range)\n"
+    "  FOLDER             images with labels (and the folders below it); each FOLDER is a group held out in turn\n"
+    "Exit status: 0 done, 2 bad input (no images, unreadable files, no labelled object among the candidates).\n";
+
+struct Arguments {
+  std::string name, output;
+  int label_class = -1, widen = 16;
+  std::vector<std::string> folders;
+};
+
+bool wholeNumber(const std::string& text, int max_digits) {
+  return !text.empty() && text.size() <= static_cast<size_t>(max_digits) &&
+         text.find_first_not_of("0123456789") == std::string::npos;
+}
+
+bool parse(int argc, char** argv, Arguments* a) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool valued = arg == "--class" || arg == "--label-class" || arg == "--widen" || arg == "--output";
+    if (valued && i + 1 >= argc) return false;
+    if (arg == "--class") {
+      a->name = argv[++i];
+    } else if (arg == "--output") {
+      a->output = argv[++i];
+    } else if (arg == "--label-class" || arg == "--widen") {
+      const std::string value = argv[++i];
+      if (!wholeNumber(value, arg == "--widen" ? 3 : 6)) return false;
+      (arg == "--widen" ? a->widen : a->label_class) = std::stoi(value);
+    } else if (!arg.empty() && arg[0] == '-') {
+      return false;
+    } else {
+      a->folders.push_back(arg);
+    }
+  }
+  return !a->name.empty() && !a->output.empty() && a->label_class >= 0 && a->widen <= 255 && !a->folders.empty();
+}
+
+// Candidate-level figures of `verifier` on `set`: recall of the positives, precision of the kept.
+void printScores(const char* what, const BlobVerifier& verifier, const VerifierTrainingSet& set) {
+  int kept = 0, kept_positive = 0;
+  for (int i = 0; i < set.features().rows; ++i) {
+    CandidateFeatures x;
+    std::copy(set.features().ptr<float>(i), set.features().ptr<float>(i) + kCandidateFeatureCount, x.begin());
+    if (verifier.score(x) < 0.5f) continue;
+    ++kept;
+    kept_positive += set.labels()[i];
+  }
+  const int positives = set.positives();
+  std::printf("%-28s candidates %6d, on the object %5d: kept %5d, recall %5.1f%%, precision %5.1f%%\n", what,
+              set.features().rows, positives, kept, positives ? 100.0 * kept_positive / positives : 0.0,
+              kept ? 100.0 * kept_positive / kept : 100.0);
+}
+
+int run(const Arguments& a) {
+  std::vector<std::vector<std::string>> groups;
+  std::vector<CalibrationExample> examples;
+  for (const std::string& folder : a.folders) {
+    groups.push_back(imagesUnderFolder(folder));
+    if (groups.back().empty()) throw std::runtime_error(folder + ": no .jpg, .jpeg or .png images in it or below it");
+    for (const std::string& path : groups.back()) {
+      CalibrationExample e = readYoloExample(path, a.label_class);
+      if (!e.boxes.empty()) examples.push_back(std::move(e));
+    }
+  }
+  if (examples.empty()) {
+    throw std::runtime_error("no box of label class " + std::to_string(a.label_class) + " in any label file");
+  }
+  const ColorClass range = widenedRange(calibrateColorClass(examples, a.name).color_class, a.widen);
+  examples.clear();
+  std::vector<VerifierTrainingSet> sets;
+  for (const std::vector<std::string>& images : groups) {
+    sets.emplace_back(range);
+    for (const std::string& path : images) {
+      const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
+      if (bgr.empty()) throw std::runtime_error(path + ": cannot read the image");
+      sets.back().addFrame(bgr, readYoloBoxes(yoloLabelPath(path), a.label_class, bgr.size()));
+    }
+  }
+  VerifierTrainingSet all(range);
+  for (const VerifierTrainingSet& s : sets) all.append(s);
+  if (all.positives() == 0) {
+    throw std::runtime_error("no candidate lies on a labelled " + a.name + ": check --label-class and --widen");
+  }
+  std::printf("candidates: %s YUV [%d %d %d]..[%d %d %d] (calibrated, widened by %d)\n", a.name.c_str(), range.min[0],
+              range.min[1], range.min[2], range.max[0], range.max[1], range.max[2], a.widen);
+  for (size_t held = 0; held < sets.size() && sets.size() > 1; ++held) {
+    VerifierTrainingSet others(range);
+    for (size_t k = 0; k < sets.size(); ++k) {
+      if (k != held) others.append(sets[k]);
+    }
+    if (others.positives() == 0 || others.positives() == static_cast<int>(others.labels().size())) continue;
+    printScores(("held out " + a.folders[held]).c_str(), BlobVerifier::train(others.features(), others.labels()), sets[held]);
+  }
+  BlobVerifier verifier = BlobVerifier::train(all.features(), all.labels());
+  verifier.setCandidateRange(range);
+  printScores("training (all folders)", verifier, all);
+  verifier.save(a.output);
+  std::printf("wrote %s\n", a.output.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Arguments args;
+  if (!parse(argc, argv, &args)) {
+    std::cerr << kUsage;
+    return 2;
+  }
+  try {
+    return run(args);
+  } catch (const std::exception& e) {
+    std::cerr << "rle_vision_train: " << e.what() << "\n";
+    return 2;
+  }
+}
