@@ -55,7 +55,8 @@ class ColorLearningLoop {
   // image; left out when the set is full). A move of a level or more on any bound is a change
   // to publish; a move of over a third of the published range's half width on a channel (the
   // tracker's copy is losing the floor's outer pixels: fast light changes) goes out at once,
-  // without waiting for the publish period. nullptr: no field class (a configured one stays).
+  // without waiting for the publish period. nullptr: no field class (a configured one stays;
+  // a field class published before is taken out with the next set, which goes out for it).
   void setFieldColour(const ColorClass* field);
 
   // Learning is off: the configured set to hand back once, if learned ranges went out before;

@@ -53,7 +53,11 @@ ColorLearningLoop::Step ColorLearningLoop::learn(const cv::Mat& bgr, const Landm
 
 void ColorLearningLoop::setFieldColour(const ColorClass* field) {
   has_field_ = field != nullptr;
-  if (!has_field_) return;
+  if (!has_field_) {
+    // Switched off: the next set goes out without it (once).
+    changes_pending_ = changes_pending_ || !published_field_.name.empty();
+    return;
+  }
   field_ = *field;
   field_.name = kFieldClassName;
   field_.source = "learned";
