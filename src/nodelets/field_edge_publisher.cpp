@@ -5,6 +5,7 @@
 #include <sensor_msgs/LaserScan.h>
 #include <visualization_msgs/Marker.h>
 
+#include "field_conversions.h"
 #include "ground_markers.h"
 #include "rle_vision/ground/field_edge.h"
 
@@ -51,9 +52,10 @@ void FieldEdgePublisher::place(const FieldBoundaryConstPtr& msg) {
   if (!sources_.pose(msg->header, &base_from_optical)) return;
   const GroundOptions options = sources_.options();
   FieldEdgeOnGround edge;
-  if (msg->found && sources_.intrinsics(&intrinsics)) {
+  const FieldBoundaryEstimate boundary = fieldBoundaryFromMsg(*msg);  // a broken message is no boundary
+  if (boundary.found && sources_.intrinsics(&intrinsics)) {
     std::vector<Eigen::Vector2d> polyline;
-    for (const geometry_msgs::Point32& p : msg->points) polyline.emplace_back(p.x, p.y);
+    for (const cv::Point2f& p : boundary.polyline) polyline.emplace_back(p.x, p.y);
     // Sampled every 2 px: the boundary is a polyline, and finer bearings than that are noise.
     edge = projectFieldEdge(intrinsics, base_from_optical, polyline, options.max_range_m,
                             options.field_edge_bearing_step_deg * M_PI / 180.0, 2.0);

@@ -2,7 +2,8 @@
 // The class's range is calibrated on the labelled boxes (rle_vision_calibrate's core) and
 // widened for recall; its blobs are the candidates; those on a labelled box are the positives.
 // Each FOLDER is a group (a recording, a date): with two or more, every group is held out in
-// turn and the verifier trained on the others scores its candidates (grouped cross-validation).
+// turn, and a range calibrated and a verifier trained on the others score its candidates
+// (grouped cross-validation).
 //
 //   rle_vision_train --class NAME --label-class N [--widen LEVELS] --output FILE FOLDER...
 #include <cstdio>
@@ -79,13 +80,15 @@ void printScores(const char* what, const BlobVerifier& verifier, const VerifierT
               kept ? 100.0 * kept_positive / kept : 100.0);
 }
 
-int run(const Arguments& a) {
-  std::vector<std::vector<std::string>> groups;
+using Groups = std::vector<std::vector<std::string>>;
+
+// The candidates' range: the class calibrated on the labelled boxes of `groups` (all but
+// `skip`), widened.
+ColorClass candidateRange(const Arguments& a, const Groups& groups, size_t skip) {
   std::vector<CalibrationExample> examples;
-  for (const std::string& folder : a.folders) {
-    groups.push_back(imagesUnderFolder(folder));
-    if (groups.back().empty()) throw std::runtime_error(folder + ": no .jpg, .jpeg or .png images in it or below it");
-    for (const std::string& path : groups.back()) {
+  for (size_t g = 0; g < groups.size(); ++g) {
+    if (g == skip) continue;
+    for (const std::string& path : groups[g]) {
       CalibrationExample e = readYoloExample(path, a.label_class);
       if (!e.boxes.empty()) examples.push_back(std::move(e));
     }
@@ -93,31 +96,45 @@ int run(const Arguments& a) {
   if (examples.empty()) {
     throw std::runtime_error("no box of label class " + std::to_string(a.label_class) + " in any label file");
   }
-  const ColorClass range = widenedRange(calibrateColorClass(examples, a.name).color_class, a.widen);
-  examples.clear();
-  std::vector<VerifierTrainingSet> sets;
-  for (const std::vector<std::string>& images : groups) {
-    sets.emplace_back(range);
-    for (const std::string& path : images) {
+  return widenedRange(calibrateColorClass(examples, a.name).color_class, a.widen);
+}
+
+// The candidates of the frames of `groups` (only group `only`, or all but `skip`).
+VerifierTrainingSet candidates(const Arguments& a, const Groups& groups, const ColorClass& range, size_t skip,
+                               size_t only = static_cast<size_t>(-1)) {
+  VerifierTrainingSet set(range);
+  for (size_t g = 0; g < groups.size(); ++g) {
+    if (g == skip || (only != static_cast<size_t>(-1) && g != only)) continue;
+    for (const std::string& path : groups[g]) {
       const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
       if (bgr.empty()) throw std::runtime_error(path + ": cannot read the image");
-      sets.back().addFrame(bgr, readYoloBoxes(yoloLabelPath(path), a.label_class, bgr.size()));
+      set.addFrame(bgr, readYoloBoxes(yoloLabelPath(path), a.label_class, bgr.size()));
     }
   }
-  VerifierTrainingSet all(range);
-  for (const VerifierTrainingSet& s : sets) all.append(s);
+  return set;
+}
+
+int run(const Arguments& a) {
+  constexpr size_t kNone = static_cast<size_t>(-1);
+  Groups groups;
+  for (const std::string& folder : a.folders) {
+    groups.push_back(imagesUnderFolder(folder));
+    if (groups.back().empty()) throw std::runtime_error(folder + ": no .jpg, .jpeg or .png images in it or below it");
+  }
+  const ColorClass range = candidateRange(a, groups, kNone);
+  const VerifierTrainingSet all = candidates(a, groups, range, kNone);
   if (all.positives() == 0) {
     throw std::runtime_error("no candidate lies on a labelled " + a.name + ": check --label-class and --widen");
   }
   std::printf("candidates: %s YUV [%d %d %d]..[%d %d %d] (calibrated, widened by %d)\n", a.name.c_str(), range.min[0],
               range.min[1], range.min[2], range.max[0], range.max[1], range.max[2], a.widen);
-  for (size_t held = 0; held < sets.size() && sets.size() > 1; ++held) {
-    VerifierTrainingSet others(range);
-    for (size_t k = 0; k < sets.size(); ++k) {
-      if (k != held) others.append(sets[k]);
-    }
+  // Each folder held out: its range and its verifier come from the other folders only.
+  for (size_t held = 0; held < groups.size() && groups.size() > 1; ++held) {
+    const ColorClass held_range = candidateRange(a, groups, held);
+    const VerifierTrainingSet others = candidates(a, groups, held_range, held);
     if (others.positives() == 0 || others.positives() == static_cast<int>(others.labels().size())) continue;
-    printScores(("held out " + a.folders[held]).c_str(), BlobVerifier::train(others.features(), others.labels()), sets[held]);
+    printScores(("held out " + a.folders[held]).c_str(), BlobVerifier::train(others.features(), others.labels()),
+                candidates(a, groups, held_range, kNone, held));
   }
   BlobVerifier verifier = BlobVerifier::train(all.features(), all.labels());
   verifier.setCandidateRange(range);

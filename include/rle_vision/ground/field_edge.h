@@ -15,7 +15,8 @@ struct FieldEdgeOnGround {
   // Where the image polyline meets the ground, base frame (z = 0), left to right in the image.
   std::vector<Eigen::Vector3d> points;
   // Per bearing bin (bearing_min_rad + i bearing_step_rad, positive to the left; bins aligned
-  // to multiples of the step so that frames share them): the nearest edge point's horizontal
+  // to multiples of the step so that frames share them; contiguous across +-pi, so that a
+  // camera looking backwards may give bearings beyond pi): the nearest edge point's horizontal
   // range (m); +infinity where no edge point falls (REP 117: no return).
   double bearing_min_rad = 0;
   double bearing_step_rad = 0;
@@ -25,7 +26,7 @@ struct FieldEdgeOnGround {
 // Samples the boundary's polyline (left to right, as FieldBoundary carries it: x, and the row of
 // the field's topmost pixel; the edge itself lies on that pixel's upper side, half a pixel
 // above) every `step_px` columns and at its ends, undistorts each sample and intersects its ray with the ground; samples at or above
-// the horizon, or beyond max_range_m, are left out. Then the nearest point per bearing bin of
+// the horizon, or beyond max_range_m, and non-finite or absurdly wide pieces are left out. Then the nearest point per bearing bin of
 // `bearing_step_rad`. An empty polyline or no point on the ground gives no points and no bins.
 FieldEdgeOnGround projectFieldEdge(const CameraIntrinsics& intrinsics, const Eigen::Isometry3d& base_from_optical,
                                    const std::vector<Eigen::Vector2d>& polyline, double max_range_m,

@@ -27,7 +27,7 @@ CalibrationExample readYoloExample(const std::string& image_path, int label_clas
 // The .jpg, .jpeg and .png files of a folder, sorted by name (empty when it cannot be read).
 std::vector<std::string> imagesInFolder(const std::string& folder);
 // The same for a folder and every folder below it: its own images first, then each subfolder's
-// in name order (a data set's dates, recordings, ...).
+// in name order (a data set's dates, recordings, ...); symlinked folders are not followed.
 std::vector<std::string> imagesUnderFolder(const std::string& folder);
 
 }  // namespace rle_vision

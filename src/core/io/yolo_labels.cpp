@@ -79,7 +79,9 @@ std::vector<std::string> imagesUnderFolder(const std::string& folder) {
   std::vector<std::string> folders;
   std::error_code error;
   for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
-    if (entry.is_directory()) folders.push_back(entry.path().string());
+    std::error_code kind_error;
+    // Symlinked folders are not followed: a link back up would never end.
+    if (entry.is_directory(kind_error) && !entry.is_symlink(kind_error)) folders.push_back(entry.path().string());
   }
   std::sort(folders.begin(), folders.end());
   for (const std::string& below : folders) {

@@ -42,7 +42,9 @@ ColorLearningLoop::Step ColorLearningLoop::learn(const cv::Mat& bgr, const Landm
   if (changes_pending_ && (!published_once_ || field_urgent_ || now_s - last_publish_s_ >= publish_period_s)) {
     step.publish = true;
     step.classes = withField(learner_->classes());
-    published_field_ = has_field_ ? field_ : ColorClass{""};
+    const bool field_sent = std::any_of(step.classes.begin(), step.classes.end(),
+                                        [](const ColorClass& c) { return c.name == kFieldClassName; });
+    published_field_ = has_field_ && field_sent ? field_ : ColorClass{""};  // a full set leaves it out
     field_urgent_ = false;
     last_publish_s_ = now_s;
     published_once_ = published_learned_ = true;

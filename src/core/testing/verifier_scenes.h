@@ -1,6 +1,6 @@
 // Synthetic frames for the verifier's tests: a floor with a shaded ball (lit from above: its
 // lower part darker) and, in the same yellow, an upright bar and a ragged patch, at seeded
-// places and sizes; the ball's box is the label.
+// places (anywhere across the view) and sizes; the ball's box is the label.
 #pragma once
 
 #include <algorithm>
@@ -25,8 +25,13 @@ inline VerifierFrame drawVerifierFrame(cv::RNG& rng) {
   cv::Mat noise(f.bgr.size(), CV_8UC3);
   rng.fill(noise, cv::RNG::NORMAL, 0, 4);
   f.bgr += noise;
+  // The ball, the bar and the patch each in one third of the width, the thirds shuffled: where a
+  // candidate lies tells nothing of what it is.
+  int third[3] = {0, 1, 2};
+  for (int i = 2; i > 0; --i) std::swap(third[i], third[rng.uniform(0, i + 1)]);
+  auto x_in = [&rng](int t, int margin) { return t * 107 + margin + rng.uniform(0, 107 - 2 * margin); };
   const int radius = rng.uniform(6, 16);
-  const cv::Point centre(rng.uniform(20, 140), rng.uniform(40, 220));
+  const cv::Point centre(x_in(third[0], 17), rng.uniform(40, 220));
   for (int r = radius; r > 0; --r) {  // darker towards the bottom right: a lit crescent
     const double shade = 0.55 + 0.45 * r / radius;
     cv::circle(f.bgr, centre + cv::Point((radius - r) / 2, (radius - r) / 2), r, yellow * shade, cv::FILLED, cv::LINE_AA);
@@ -34,10 +39,10 @@ inline VerifierFrame drawVerifierFrame(cv::RNG& rng) {
   cv::circle(f.bgr, centre - cv::Point(radius / 3, radius / 3), std::max(1, radius / 4), yellow, cv::FILLED);
   f.balls.push_back(cv::Rect(centre.x - radius, centre.y - radius, 2 * radius + 1, 2 * radius + 1));
   const int bar_w = rng.uniform(5, 10);
-  cv::rectangle(f.bgr, cv::Rect(rng.uniform(170, 220), rng.uniform(20, 120), bar_w, bar_w * rng.uniform(4, 8)), yellow,
+  cv::rectangle(f.bgr, cv::Rect(x_in(third[1], 12), rng.uniform(20, 120), bar_w, bar_w * rng.uniform(4, 8)), yellow,
                 cv::FILLED);
   std::vector<cv::Point> patch;
-  const cv::Point at(rng.uniform(240, 290), rng.uniform(60, 200));
+  const cv::Point at(x_in(third[2], 28), rng.uniform(60, 200));
   for (int k = 0; k < 9; ++k) {
     const double a = k * 2 * M_PI / 9, r = rng.uniform(10, 28);
     patch.emplace_back(at + cv::Point(static_cast<int>(r * std::cos(a)), static_cast<int>(r * std::sin(a))));

@@ -1,10 +1,11 @@
 // rle_vision_train on folders of synthetic labelled frames (a shaded ball among same-coloured
-// shapes): it writes a verifier that loads and keeps the balls, prints the held-out figures of
-// each folder, and refuses bad input with a one-line reason and exit status 2.
+// shapes): it writes a verifier that loads, prints the held-out figures of each folder (over
+// 90% of the ball candidates kept, over 90% of those kept on a ball), and refuses bad input with a one-line reason and exit status 2.
 #include <sys/wait.h>
 
 #include <cstdio>
 #include <fstream>
+#include <regex>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -52,8 +53,15 @@ TEST(TrainCli, WritesAVerifierThatLoadsAndReportsHeldOutFolders) {
                                   "/ball_verifier.yml " + dir + "/a " + dir + "/b",
                               &status);
   ASSERT_EQ(status, 0) << out;
-  EXPECT_NE(out.find("held out " + dir + "/a"), std::string::npos) << out;
-  EXPECT_NE(out.find("held out " + dir + "/b"), std::string::npos) << out;
+  // Each folder held out: the candidates on a ball kept, the others dropped (recall and
+  // precision of the candidates over 90%).
+  const std::regex held("held out " + dir + "/([ab]) .*recall +([0-9.]+)%, precision +([0-9.]+)%");
+  int folders = 0;
+  for (std::sregex_iterator m(out.begin(), out.end(), held), end; m != end; ++m, ++folders) {
+    EXPECT_GE(std::stod((*m)[2].str()), 90.0) << (*m)[0];
+    EXPECT_GE(std::stod((*m)[3].str()), 90.0) << (*m)[0];
+  }
+  EXPECT_EQ(folders, 2) << out;
   const BlobVerifier verifier = BlobVerifier::load(dir + "/ball_verifier.yml");
   EXPECT_TRUE(verifier.trained());
   EXPECT_EQ(verifier.candidateRange().name, "ball");

@@ -45,6 +45,14 @@ TEST(FieldEdge, AnImageRowIsAStraightEdgeOnTheGround) {
   EXPECT_TRUE(projectFieldEdge(c, pose, {}, 10.0, 1 * kDeg).points.empty());
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_TRUE(projectFieldEdge(c, pose, {{0, nan}, {639, nan}}, 10.0, 1 * kDeg).points.empty());
+  EXPECT_TRUE(projectFieldEdge(c, pose, {{nan, row + 0.5}, {639, row + 0.5}}, 10.0, 1 * kDeg).points.size() <= 1);
+  EXPECT_TRUE(projectFieldEdge(c, pose, {{-1e12, row + 0.5}, {1e12, row + 0.5}}, 10.0, 1 * kDeg).ranges_m.empty());
+  // Looking backwards (yaw 180 degrees): the bearings straddle +-pi and the bins stay contiguous.
+  const FieldEdgeOnGround back =
+      projectFieldEdge(c, baseFromOptical(0, pitch, M_PI, height), {{0, row + 0.5}, {639, row + 0.5}}, 10.0, 1 * kDeg);
+  ASSERT_EQ(back.ranges_m.size(), edge.ranges_m.size());  // as many bins as looking forwards, not 360
+  const double middle = back.bearing_min_rad + 0.5 * (back.ranges_m.size() - 1) * back.bearing_step_rad;
+  EXPECT_NEAR(std::remainder(middle - M_PI, 2 * M_PI), 0.0, 2 * kDeg);
   EXPECT_TRUE(projectFieldEdge(c, pose, {{0, row}, {639, row}}, 10.0, 0.0).points.empty());
 }
 
