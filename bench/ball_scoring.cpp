@@ -1,6 +1,12 @@
 #include "ball_scoring.h"
 
+#include <algorithm>
+#include <filesystem>
 #include <sstream>
+#include <stdexcept>
+
+#include "rle_vision/io/yolo_labels.h"
+#include "rle_vision/learning/color_calibration.h"
 
 namespace rle_vision {
 namespace bench {
@@ -77,6 +83,38 @@ std::string ballScoreJson(const BallScore& s) {
       << ", \"blobs\": " << s.blobs << ", \"blobs_on_ball\": " << s.on_ball << ", \"precision_pct\": " << s.precision()
       << ", \"ms_per_frame\": " << s.msPerFrame() << "}";
   return out.str();
+}
+
+void addBallScoreValues(const std::string& key, const BallScore& s, std::vector<std::pair<std::string, double>>* values) {
+  values->emplace_back(key + ".balls", s.balls);
+  values->emplace_back(key + ".recall_pct", s.recall());
+  values->emplace_back(key + ".recall_on_field_pct", s.fieldRecall());
+  values->emplace_back(key + ".blobs", s.blobs);
+  values->emplace_back(key + ".precision_pct", s.precision());
+}
+
+std::vector<LabelledDate> labelledDates(const std::string& root) {
+  std::vector<LabelledDate> dates;
+  if (root.empty() || !std::filesystem::is_directory(root)) return dates;
+  for (const auto& entry : std::filesystem::directory_iterator(root)) {
+    if (entry.is_directory()) dates.push_back({entry.path().filename().string(), imagesUnderFolder(entry.path().string())});
+  }
+  std::sort(dates.begin(), dates.end(), [](const LabelledDate& a, const LabelledDate& b) { return a.name < b.name; });
+  return dates;
+}
+
+ColorClass calibrateBall(const std::vector<const LabelledDate*>& dates, int label_class) {
+  std::vector<CalibrationExample> examples;
+  std::string names;
+  for (const LabelledDate* d : dates) {
+    names += (names.empty() ? "" : ", ") + d->name;
+    for (const std::string& path : d->images) {
+      CalibrationExample e = readYoloExample(path, label_class);
+      if (!e.boxes.empty()) examples.push_back(std::move(e));
+    }
+  }
+  if (examples.empty()) throw std::runtime_error(names + ": no labelled balls to calibrate from");
+  return calibrateColorClass(examples, "ball").color_class;
 }
 
 }  // namespace bench

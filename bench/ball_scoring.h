@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -75,6 +76,19 @@ class BallMethods {
 };
 
 std::string ballScoreJson(const BallScore& s);
+// The score's figures as make eval's flat JSON values, under `key` ("KEY.balls", ...).
+void addBallScoreValues(const std::string& key, const BallScore& s, std::vector<std::pair<std::string, double>>* values);
+
+// A data set's recording date (one hall and its light): its name and every image below it.
+struct LabelledDate {
+  std::string name;
+  std::vector<std::string> images;
+};
+// The folders of `root`, each a date, in name order (none when `root` is not a folder).
+std::vector<LabelledDate> labelledDates(const std::string& root);
+// The ball class calibrated (rle_vision_calibrate's core) on every labelled ball of `dates`.
+// Throws std::runtime_error when they hold none.
+ColorClass calibrateBall(const std::vector<const LabelledDate*>& dates, int label_class);
 
 }  // namespace bench
 }  // namespace rle_vision

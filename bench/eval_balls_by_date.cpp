@@ -30,10 +30,7 @@ namespace {
 using namespace rle_vision;
 using bench::BallScore;
 
-struct Date {
-  std::string name;
-  std::vector<std::string> images;
-};
+using Date = bench::LabelledDate;
 
 // The methods' scores on one scored date (or a sum of them).
 struct PairScore {
@@ -45,16 +42,6 @@ const std::vector<std::pair<const char*, BallScore PairScore::*>> kMethods = {
     {"ours", &PairScore::ours}, {"ours_on_field", &PairScore::on_field}, {"opencv", &PairScore::opencv}};
 const char* const kMethodNames[] = {"ours, calibrated range (fixed)", "ours, on the field side only",
                                     "OpenCV cvtColor+inRange+connectedComponents"};
-
-ColorClass calibrateOn(const Date& date, int label_class) {
-  std::vector<CalibrationExample> examples;
-  for (const std::string& path : date.images) {
-    CalibrationExample e = readYoloExample(path, label_class);
-    if (!e.boxes.empty()) examples.push_back(std::move(e));
-  }
-  if (examples.empty()) throw std::runtime_error(date.name + ": no labelled balls to calibrate from");
-  return calibrateColorClass(examples, "ball").color_class;
-}
 
 // The frame's field boundary, found once per frame (each frame alone) and kept for every pair.
 const FieldResult& fieldOf(const std::string& path, const cv::Mat& bgr, std::map<std::string, FieldResult>* cache) {
@@ -87,24 +74,8 @@ void printRow(const std::string& pair, const char* method, const BallScore& s) {
 
 void addValues(const std::string& prefix, const PairScore& s, std::vector<std::pair<std::string, double>>* values) {
   for (const auto& m : kMethods) {
-    const BallScore& b = s.*m.second;
-    const std::string key = prefix + "." + m.first + ".";
-    values->emplace_back(key + "balls", b.balls);
-    values->emplace_back(key + "recall_pct", b.recall());
-    values->emplace_back(key + "recall_on_field_pct", b.fieldRecall());
-    values->emplace_back(key + "blobs", b.blobs);
-    values->emplace_back(key + "precision_pct", b.precision());
+    bench::addBallScoreValues(prefix + "." + m.first, s.*m.second, values);
   }
-}
-
-std::vector<Date> datesIn(const std::string& root) {
-  std::vector<Date> dates;
-  if (root.empty() || !std::filesystem::is_directory(root)) return dates;
-  for (const auto& entry : std::filesystem::directory_iterator(root)) {
-    if (entry.is_directory()) dates.push_back({entry.path().filename().string(), imagesUnderFolder(entry.path().string())});
-  }
-  std::sort(dates.begin(), dates.end(), [](const Date& a, const Date& b) { return a.name < b.name; });
-  return dates;
 }
 
 // Every date calibrates; every other date is scored; the worst pair per method and figure.
@@ -116,7 +87,7 @@ void run(const std::vector<Date>& dates, int label_class, const std::string& jso
   PairScore all;
   std::map<std::string, double> worst;
   for (const Date& calibration : dates) {
-    const ColorClass ball = calibrateOn(calibration, label_class);
+    const ColorClass ball = bench::calibrateBall({&calibration}, label_class);
     for (const Date& scored : dates) {
       if (&scored == &calibration) continue;
       const PairScore s = scoreDate(scored, ball, label_class, &fields);
@@ -154,7 +125,7 @@ int main(int argc, char** argv) {
       root = arg;
     }
   }
-  const std::vector<Date> dates = datesIn(root);
+  const std::vector<Date> dates = bench::labelledDates(root);
   if (dates.size() < 2 || label_class.empty() || label_class.find_first_not_of("0123456789") != std::string::npos ||
       label_class.size() > 6) {
     std::cerr << "usage: rle_vision_eval_balls_by_date [--label-class N] [--json OUT] DIR (its folders: two or more "

@@ -30,10 +30,7 @@ namespace {
 using namespace rle_vision;
 using bench::BallScore;
 
-struct Date {
-  std::string name;
-  std::vector<std::string> images;
-};
+using Date = bench::LabelledDate;
 
 struct HeldOutScore {
   BallScore range, loose, verified, verified_on_field;
@@ -54,17 +51,6 @@ const char* const kMethodNames[] = {"calibrated range alone (= OpenCV inRange)",
                                     "loosened range + verifier",
                                     "loosened range + verifier, field side only"};
 
-ColorClass calibrateOn(const std::vector<const Date*>& dates, int label_class) {
-  std::vector<CalibrationExample> examples;
-  for (const Date* d : dates) {
-    for (const std::string& path : d->images) {
-      CalibrationExample e = readYoloExample(path, label_class);
-      if (!e.boxes.empty()) examples.push_back(std::move(e));
-    }
-  }
-  return calibrateColorClass(examples, "ball").color_class;
-}
-
 // The candidates of `dates`' frames (blobs of `range`) and their labels.
 VerifierTrainingSet collect(const std::vector<const Date*>& dates, const ColorClass& range, int label_class) {
   VerifierTrainingSet set(range, bench::kMinBallBlobArea);
@@ -80,7 +66,7 @@ VerifierTrainingSet collect(const std::vector<const Date*>& dates, const ColorCl
 
 HeldOutScore evaluate(const Date& held_out, const std::vector<const Date*>& training, int label_class, int widen) {
   HeldOutScore s;
-  const ColorClass calibrated = calibrateOn(training, label_class);
+  const ColorClass calibrated = bench::calibrateBall(training, label_class);
   const ColorClass candidates_range = widenedRange(calibrated, widen);
   const VerifierTrainingSet set = collect(training, candidates_range, label_class);
   s.train_candidates = static_cast<int>(set.labels().size());
@@ -130,29 +116,13 @@ void printRow(const std::string& date, const char* method, const BallScore& b) {
 
 void addValues(const std::string& prefix, const HeldOutScore& s, std::vector<std::pair<std::string, double>>* values) {
   for (const auto& m : kMethods) {
-    const BallScore& b = s.*m.second;
-    const std::string key = prefix + "." + m.first + ".";
-    values->emplace_back(key + "balls", b.balls);
-    values->emplace_back(key + "recall_pct", b.recall());
-    values->emplace_back(key + "recall_on_field_pct", b.fieldRecall());
-    values->emplace_back(key + "blobs", b.blobs);
-    values->emplace_back(key + "precision_pct", b.precision());
+    bench::addBallScoreValues(prefix + "." + m.first, s.*m.second, values);
   }
   values->emplace_back(prefix + ".train_candidates", s.train_candidates);
   values->emplace_back(prefix + ".train_positives", s.train_positives);
   values->emplace_back(prefix + ".candidates", s.candidates);
   values->emplace_back(prefix + ".frames", s.range.frames);
   values->emplace_back(prefix + ".verify_us_per_candidate", s.candidates ? 1000.0 * s.verify_ms / s.candidates : 0);
-}
-
-std::vector<Date> datesIn(const std::string& root) {
-  std::vector<Date> dates;
-  if (root.empty() || !std::filesystem::is_directory(root)) return dates;
-  for (const auto& entry : std::filesystem::directory_iterator(root)) {
-    if (entry.is_directory()) dates.push_back({entry.path().filename().string(), imagesUnderFolder(entry.path().string())});
-  }
-  std::sort(dates.begin(), dates.end(), [](const Date& a, const Date& b) { return a.name < b.name; });
-  return dates;
 }
 
 void run(const std::vector<Date>& dates, int label_class, int widen, const std::string& json) {
@@ -203,7 +173,7 @@ int main(int argc, char** argv) {
       root = arg;
     }
   }
-  const std::vector<Date> dates = datesIn(root);
+  const std::vector<Date> dates = bench::labelledDates(root);
   const bool numbers = !label_class.empty() && label_class.find_first_not_of("0123456789") == std::string::npos &&
                        label_class.size() <= 6 && !widen.empty() && widen.find_first_not_of("0123456789") == std::string::npos &&
                        widen.size() <= 3;
