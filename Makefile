@@ -9,7 +9,7 @@ export JOBS
 RECORD ?= 0
 export RECORD
 
-.PHONY: all deps build demo test test-readme test-asan test-core test-install fuzz bench eval train-horizon bench-latency screenshot clean
+.PHONY: all deps build demo test test-readme test-asan test-core test-install fuzz bench eval train-horizon train bench-latency screenshot clean
 
 all: build
 
@@ -48,6 +48,9 @@ eval: build
 
 train-horizon: build
 	@scripts/train_horizon.sh
+
+train: build
+	@scripts/train_verifier.sh
 
 bench-latency: build
 	@scripts/bench_latency.sh

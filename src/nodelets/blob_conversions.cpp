@@ -25,6 +25,7 @@ Blob blobToMsg(const TrackedBlob& blob, const std::string& color_name) {
   b.angle = static_cast<float>(r.angle);
   b.age = blob.age;
   b.above_field_px = std::nanf("");  // unknown until the tracker measures it against a boundary
+  b.score = blob.score;
   return b;
 }
 

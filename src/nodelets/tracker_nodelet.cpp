@@ -46,6 +46,7 @@
 #include "rle_vision/segment/region_load.h"
 #include "rle_vision/segment/segmenter.h"
 #include "rle_vision/color/shared_color_table.h"
+#include "rle_vision/verify/candidate_screen.h"
 
 namespace rle_vision {
 
@@ -55,12 +56,15 @@ class TrackerNodelet : public nodelet::Nodelet {
 
  private:
   void onInit() override;
+  void loadColours(const std::string& setting, int max_candidates_per_frame);
   void connectCb();
   void imageCb(const sensor_msgs::ImageConstPtr& msg);
   void colorRangesCb(const ColorRangeArrayConstPtr& msg);
   void fieldBoundaryCb(const FieldBoundaryConstPtr& msg);
   FieldBoundaryEstimate fieldBoundaryAt(const ros::Time& stamp);
   void setUpOnField(ros::NodeHandle& nh, const std::string& classes, double margin_px, double max_age_s);
+  void screenCandidates(const CameraFrame& frame, const ColorTable& table);
+  void reportVerifier(diagnostic_updater::DiagnosticStatusWrapper& status);
   void reconfigureCb(TrackerConfig& config, uint32_t level);
   void publishActiveRanges(const ColorTable& table, const ros::Time& stamp);
   void reportDiagnostics(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -115,6 +119,14 @@ class TrackerNodelet : public nodelet::Nodelet {
   std::unique_ptr<OnFieldFilter> on_field_;
   double field_max_age_s_ = 0.5;
   std::atomic<uint64_t> dropped_off_field_{0}, dropped_off_field_total_{0};
+
+  // Classes with a verifier (verifier_file in the colours file): their blobs are scored and
+  // screened. Counts for diagnostics: since the last report, and in total.
+  CandidateScreen screen_;
+  std::mutex screen_counts_mutex_;
+  ScreeningCounts screened_, screened_total_;
+  uint64_t frames_over_cap_ = 0;
+  cv::Mat verifier_bgr_;  // the frame as BGR, for formats other than bgr8
 
   // Used only by imageCb, which ROS calls serially.
   ColorTracker color_tracker_;
@@ -183,16 +195,7 @@ void TrackerNodelet::onInit() {
   queue_size_ = settings.queue_size;
   publish_cmvision_blobs_ = settings.publish_cmvision_blobs;
 
-  const std::string colors_file =
-      settings.colors_file.empty() ? ros::package::getPath("rle_vision") + "/config/colors.yaml" : settings.colors_file;
-  try {
-    table_.store(std::make_shared<const ColorTable>(loadColorClasses(colors_file)));
-  } catch (const std::exception& e) {
-    // Fail loudly at start: without classes the tracker cannot do anything useful.
-    NODELET_FATAL("cannot load colour classes: %s. Set ~colors_file to a colors.yaml or CMVision colors.txt.", e.what());
-    throw;
-  }
-  NODELET_INFO("loaded %d colour classes from %s", table_.load()->size(), colors_file.c_str());
+  loadColours(settings.colors_file, settings.verifier_max_candidates_per_frame);
   table_since_ = ros::WallTime::now();
   setUpOnField(nh, settings.on_field_classes, settings.on_field_margin_px, settings.field_boundary_max_age_s);
 
@@ -217,6 +220,33 @@ void TrackerNodelet::onInit() {
   pub_active_ranges_ = pnh.advertise<ColorRangeArray>("active_color_ranges", 1, /*latch=*/true);
   sub_ranges_ = nh.subscribe("color_ranges", 1, &TrackerNodelet::colorRangesCb, this);
   publishActiveRanges(*table_.load(), ros::Time::now());
+}
+
+// The colour classes of ~colors_file and the verifiers they name; a file that cannot be used
+// stops the tracker with the fix.
+void TrackerNodelet::loadColours(const std::string& setting, int max_candidates_per_frame) {
+  const std::string colors_file =
+      setting.empty() ? ros::package::getPath("rle_vision") + "/config/colors.yaml" : setting;
+  try {
+    table_.store(std::make_shared<const ColorTable>(loadColorClasses(colors_file)));
+  } catch (const std::exception& e) {
+    // Fail loudly at start: without classes the tracker cannot do anything useful.
+    NODELET_FATAL("cannot load colour classes: %s. Set ~colors_file to a colors.yaml or CMVision colors.txt.", e.what());
+    throw;
+  }
+  NODELET_INFO("loaded %d colour classes from %s", table_.load()->size(), colors_file.c_str());
+  try {
+    screen_ = CandidateScreen(loadClassVerifiers(table_.load()->classes()),
+                              static_cast<uint32_t>(max_candidates_per_frame));
+  } catch (const std::exception& e) {
+    NODELET_FATAL("%s. Fix the class's verifier_file in %s (rle_vision_train writes the file), or remove it.", e.what(),
+                  colors_file.c_str());
+    throw;
+  }
+  for (const ClassVerifier& v : screen_.verifiers()) {
+    NODELET_INFO("class '%s' is screened by a verifier: blobs scoring under %.2f are not published", v.class_name.c_str(),
+                 v.min_score);
+  }
 }
 
 void TrackerNodelet::connectCb() {
@@ -334,6 +364,7 @@ void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
   const int off_field = on_field_->apply(fieldBoundaryAt(msg->header.stamp), *table, &blobs_, &above_field_);
   dropped_off_field_ += off_field;
   dropped_off_field_total_ += off_field;
+  screenCandidates(frame, *table);
 
   auto out = boost::make_shared<BlobArray>();
   out->header = msg->header;
@@ -365,6 +396,43 @@ void TrackerNodelet::imageCb(const sensor_msgs::ImageConstPtr& msg) {
   }
 }
 
+void TrackerNodelet::screenCandidates(const CameraFrame& frame, const ColorTable& table) {
+  if (!screen_.hasCandidates(table, blobs_)) return;
+  // The verifier judges BGR pixels, as it was trained: other formats are converted for it.
+  const cv::Mat* bgr = &frame.image;
+  if (frame.format != PixelFormat::BGR8) {
+    verifier_bgr_ = toDisplayBgr(frame.image, frame.format);
+    bgr = &verifier_bgr_;
+  }
+  const ScreeningCounts counts = screen_.apply(*bgr, table, &blobs_, &above_field_);
+  std::lock_guard<std::mutex> lock(screen_counts_mutex_);
+  for (ScreeningCounts* sum : {&screened_, &screened_total_}) {
+    sum->candidates += counts.candidates;
+    sum->scored += counts.scored;
+    sum->rejected += counts.rejected;
+    sum->over_cap += counts.over_cap;
+  }
+  frames_over_cap_ += counts.over_cap > 0;
+}
+
+void TrackerNodelet::reportVerifier(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  if (screen_.empty()) return;
+  std::lock_guard<std::mutex> lock(screen_counts_mutex_);
+  status.add("verifier candidates scored (since last report)", screened_.scored);
+  status.add("verifier candidates rejected under min_score (since last report)", screened_.rejected);
+  status.add("verifier candidates dropped unjudged over the cap (since last report)", screened_.over_cap);
+  status.add("verifier candidates rejected under min_score (total)", screened_total_.rejected);
+  status.add("verifier candidates dropped unjudged over the cap (total)", screened_total_.over_cap);
+  if (frames_over_cap_ > 0) {
+    status.mergeSummaryf(diagnostic_msgs::DiagnosticStatus::WARN,
+                         "%lu frames had more verifier candidates than ~verifier_max_candidates_per_frame (%u): "
+                         "raise it, or narrow the verified class's colour range",
+                         static_cast<unsigned long>(frames_over_cap_), screen_.maxCandidatesPerFrame());
+  }
+  screened_ = ScreeningCounts();
+  frames_over_cap_ = 0;
+}
+
 void TrackerNodelet::reportDiagnostics(diagnostic_updater::DiagnosticStatusWrapper& status) {
   stats_.report(status, 0.5);
   {
@@ -380,6 +448,7 @@ void TrackerNodelet::reportDiagnostics(diagnostic_updater::DiagnosticStatusWrapp
     }
   }
   reportRegionLoad(status);
+  reportVerifier(status);
   status.add("blobs dropped beyond the field boundary (since last report)", dropped_off_field_.exchange(0));
   status.add("blobs dropped beyond the field boundary (total)", dropped_off_field_total_.load());
   std::lock_guard<std::mutex> lock(table_info_mutex_);

@@ -2,8 +2,10 @@
 // Prints one JSON object per image on stdout; unreadable files give an error entry and a
 // non-zero exit status at the end.
 //
-//   rle_vision_detect [--colors FILE] [--params FILE] [--horizon-model FILE] [--annotate DIR] [--sequence [--fps HZ]] IMAGE...
+//   rle_vision_detect [--colors FILE] [--verifier FILE [--min-score S]] [--params FILE] [--horizon-model FILE]
+//                     [--annotate DIR] [--sequence [--fps HZ]] IMAGE...
 //   rle_vision_detect --print-params
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -23,16 +25,20 @@
 #include "rle_vision/io/landmark_params_file.h"
 #include "rle_vision/pipeline/overlay.h"
 #include "rle_vision/tracking/color_tracker.h"
+#include "rle_vision/verify/candidate_screen.h"
 
 namespace {
 
 using namespace rle_vision;
 
 const char* kUsage =
-    "usage: rle_vision_detect [--colors FILE] [--params FILE] [--horizon-model FILE] [--annotate DIR] [--sequence [--fps HZ]]\n"
-    "                         IMAGE...\n"
+    "usage: rle_vision_detect [--colors FILE] [--verifier FILE [--min-score S]] [--params FILE] [--horizon-model FILE]\n"
+    "                         [--annotate DIR] [--sequence [--fps HZ]] IMAGE...\n"
     "       rle_vision_detect --print-params\n"
     "  --colors FILE    colour classes: colors.yaml or CMVision colors.txt (default: the package's config/colors.yaml)\n"
+    "  --verifier FILE  a verifier (rle_vision_train) screens the blobs of the class it was trained for: blobs\n"
+    "                   scoring under --min-score (default 0.5) are left out, the others carry their score; a\n"
+    "                   class of that name not in the colours gets the verifier's own candidate range, first\n"
     "  --params FILE    landmark parameters (default: their defaults; see --print-params)\n"
     "  --horizon-model FILE  the horizon model (default: the package's config/horizon_model.yaml; none: no model)\n"
     "  --annotate DIR   also write DIR/<image name>.png with blobs, lines and the horizon drawn (DIR is made)\n"
@@ -45,7 +51,9 @@ const char* kUsage =
 
 struct Arguments {
   std::string colors_file = packageDataFile("config/colors.yaml");
-  std::string params_file, annotate_dir, horizon_model;
+  std::string params_file, annotate_dir, horizon_model, verifier_file;
+  double min_score = 0.5;
+  bool min_score_given = false;
   bool print_params = false, sequence = false, fps_given = false;
   double fps = 30;
   std::vector<std::string> images;
@@ -56,7 +64,7 @@ bool parseArguments(int argc, char** argv, Arguments* args, int* exit_status) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
-    if (arg == "--colors" || arg == "--params" || arg == "--annotate" || arg == "--horizon-model") {
+    if (arg == "--colors" || arg == "--params" || arg == "--annotate" || arg == "--horizon-model" || arg == "--verifier") {
       if (!has_value) {
         std::cerr << "rle_vision_detect: " << arg << " needs a value\n" << kUsage;
         *exit_status = 2;
@@ -65,6 +73,7 @@ bool parseArguments(int argc, char** argv, Arguments* args, int* exit_status) {
       (arg == "--colors" ? args->colors_file
        : arg == "--params" ? args->params_file
        : arg == "--annotate" ? args->annotate_dir
+       : arg == "--verifier" ? args->verifier_file
                              : args->horizon_model) = argv[++i];
     } else if (arg == "--fps") {
       char* end = nullptr;
@@ -72,6 +81,15 @@ bool parseArguments(int argc, char** argv, Arguments* args, int* exit_status) {
       args->fps_given = true;
       if (!has_value || *end != '\0' || !(args->fps > 0 && args->fps < 1e6)) {
         std::cerr << "rle_vision_detect: --fps needs a frame rate > 0 (Hz)\n" << kUsage;
+        *exit_status = 2;
+        return false;
+      }
+    } else if (arg == "--min-score") {
+      char* end = nullptr;
+      args->min_score = has_value ? std::strtod(argv[++i], &end) : -1;
+      args->min_score_given = true;
+      if (!has_value || *end != '\0' || !(args->min_score >= 0 && args->min_score <= 1)) {
+        std::cerr << "rle_vision_detect: --min-score needs a score from 0 to 1\n" << kUsage;
         *exit_status = 2;
         return false;
       }
@@ -91,6 +109,11 @@ bool parseArguments(int argc, char** argv, Arguments* args, int* exit_status) {
     } else {
       args->images.push_back(arg);
     }
+  }
+  if (args->min_score_given && args->verifier_file.empty()) {
+    std::cerr << "rle_vision_detect: --min-score needs --verifier\n" << kUsage;
+    *exit_status = 2;
+    return false;
   }
   if (args->fps_given && !args->sequence) {
     std::cerr << "rle_vision_detect: --fps needs --sequence (single images have no time)\n" << kUsage;
@@ -130,7 +153,7 @@ bool annotate(const cv::Mat& image, const std::vector<TrackedBlob>& blobs, const
 class ImageDetector {
  public:
   ImageDetector(const std::vector<ColorClass>& classes, const LandmarkOptions& options, const FieldOptions& field)
-      : table_(classes), options_(options), field_options_(field) {
+      : table_(classes), screen_(loadClassVerifiers(classes)), options_(options), field_options_(field) {
     for (const ColorClass& c : classes) {
       if (c.name == kFieldClassName) configured_field_ = std::make_unique<ColorClass>(c);
     }
@@ -149,6 +172,7 @@ class ImageDetector {
     try {
       ColorTracker tracker;  // a new one per image: nothing carries over
       tracker.process(image, PixelFormat::BGR8, table_, 0.0, &blobs);
+      screen_.apply(image, table_, &blobs);
       detector_.detectInImage(image, options_, &result);
       FieldDetector field_detector(field_options_);  // the field colour seeded on this image
       if (configured_field_) field_detector.setConfiguredColour(*configured_field_);
@@ -164,6 +188,7 @@ class ImageDetector {
 
  private:
   ColorTable table_;
+  CandidateScreen screen_;  // classes with a verifier
   LandmarkOptions options_;
   FieldOptions field_options_;
   std::unique_ptr<ColorClass> configured_field_;  // the colours file's field class, if any
@@ -221,6 +246,22 @@ int runSequence(const Arguments& args, const std::vector<ColorClass>& classes, c
   return failures == 0 ? 0 : 1;
 }
 
+// The colour classes, with --verifier attached to the class it was trained for. When the colours
+// have no class of that name, the verifier's candidate range is added first: it wins the pixels
+// it shares with other classes, as it did in training (a table of that class alone).
+std::vector<ColorClass> colorClasses(const Arguments& args) {
+  std::vector<ColorClass> classes = loadColorClasses(args.colors_file);
+  if (args.verifier_file.empty()) return classes;
+  const ColorClass range = BlobVerifier::load(args.verifier_file).candidateRange();
+  auto it = std::find_if(classes.begin(), classes.end(), [&](const ColorClass& c) { return c.name == range.name; });
+  if (it == classes.end()) it = classes.insert(classes.begin(), range);
+  it->verifier_file = args.verifier_file;
+  it->min_score = args.min_score;
+  const std::string problem = validateColorClasses(classes);
+  if (!problem.empty()) throw ConfigError(args.verifier_file + ": " + problem);
+  return classes;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -246,9 +287,9 @@ int main(int argc, char** argv) {
     }
     LandmarkOptions options = args.params_file.empty() ? LandmarkOptions() : loadLandmarkParams(args.params_file);
     options.horizon.model = horizonModelFromSetting(args.horizon_model);
-    if (args.sequence) return runSequence(args, loadColorClasses(args.colors_file), options);
+    if (args.sequence) return runSequence(args, colorClasses(args), options);
     const FieldOptions field = args.params_file.empty() ? FieldOptions() : loadFieldParams(args.params_file);
-    detector = std::make_unique<ImageDetector>(loadColorClasses(args.colors_file), options, field);
+    detector = std::make_unique<ImageDetector>(colorClasses(args), options, field);
   } catch (const std::exception& e) {
     std::cerr << "rle_vision_detect: " << e.what() << "\n";
     return 2;

@@ -23,7 +23,8 @@ void blobsJson(std::ostringstream& json, const std::vector<TrackedBlob>& blobs, 
     json << (i ? "," : "") << "{\"id\":" << blobs[i].id << ",\"color\":" << jsonString(table.classes()[r.label - 1].name)
          << ",\"area\":" << r.area << ",\"cx\":" << number(r.cx) << ",\"cy\":" << number(r.cy) << ",\"left\":" << r.left
          << ",\"top\":" << r.top << ",\"right\":" << r.right << ",\"bottom\":" << r.bottom << ",\"bottom_at_cx\":" << r.bottom_at_cx
-         << ",\"angle\":" << number(r.angle) << ",\"above_field_px\":" << number(above) << "}";
+         << ",\"angle\":" << number(r.angle) << ",\"above_field_px\":" << number(above)
+         << ",\"score\":" << number(blobs[i].score) << "}";
   }
 }
 

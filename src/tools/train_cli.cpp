@@ -65,7 +65,8 @@ bool parse(int argc, char** argv, Arguments* a) {
 }
 
 // Candidate-level figures of `verifier` on `set`: recall of the positives, precision of the kept.
-void printScores(const char* what, const BlobVerifier& verifier, const VerifierTrainingSet& set) {
+// Printed, and returned (for the model file's note).
+std::string printScores(const std::string& what, const BlobVerifier& verifier, const VerifierTrainingSet& set) {
   int kept = 0, kept_positive = 0;
   for (int i = 0; i < set.features().rows; ++i) {
     CandidateFeatures x;
@@ -75,9 +76,17 @@ void printScores(const char* what, const BlobVerifier& verifier, const VerifierT
     kept_positive += set.labels()[i];
   }
   const int positives = set.positives();
-  std::printf("%-28s candidates %6d, on the object %5d: kept %5d, recall %5.1f%%, precision %5.1f%%\n", what,
-              set.features().rows, positives, kept, positives ? 100.0 * kept_positive / positives : 0.0,
-              kept ? 100.0 * kept_positive / kept : 100.0);
+  char line[512];
+  std::snprintf(line, sizeof(line), "%-28s candidates %6d, on the object %5d: kept %5d, recall %5.1f%%, precision %5.1f%%",
+                what.c_str(), set.features().rows, positives, kept, positives ? 100.0 * kept_positive / positives : 0.0,
+                kept ? 100.0 * kept_positive / kept : 100.0);
+  std::printf("%s\n", line);
+  return line;
+}
+
+std::string folderName(const std::string& folder) {
+  const std::string trimmed = folder.substr(0, folder.find_last_not_of('/') + 1);
+  return trimmed.substr(trimmed.find_last_of('/') + 1);
 }
 
 using Groups = std::vector<std::vector<std::string>>;
@@ -128,18 +137,27 @@ int run(const Arguments& a) {
   }
   std::printf("candidates: %s YUV [%d %d %d]..[%d %d %d] (calibrated, widened by %d)\n", a.name.c_str(), range.min[0],
               range.min[1], range.min[2], range.max[0], range.max[1], range.max[2], a.widen);
+  // How the file was made, kept in it: the command, the data, the held-out figures.
+  std::string note = "Made by rle_vision_train --class " + a.name + " --label-class " + std::to_string(a.label_class) +
+                     " --widen " + std::to_string(a.widen) + " from the folders";
+  size_t frames = 0;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    note += " " + folderName(a.folders[g]);
+    frames += groups[g].size();
+  }
+  note += " (" + std::to_string(frames) + " frames). Candidate-level figures, 0.5 the threshold:\n";
   // Each folder held out: its range and its verifier come from the other folders only.
   for (size_t held = 0; held < groups.size() && groups.size() > 1; ++held) {
     const ColorClass held_range = candidateRange(a, groups, held);
     const VerifierTrainingSet others = candidates(a, groups, held_range, held);
     if (others.positives() == 0 || others.positives() == static_cast<int>(others.labels().size())) continue;
-    printScores(("held out " + a.folders[held]).c_str(), BlobVerifier::train(others.features(), others.labels()),
-                candidates(a, groups, held_range, kNone, held));
+    note += printScores("held out " + folderName(a.folders[held]), BlobVerifier::train(others.features(), others.labels()),
+                        candidates(a, groups, held_range, kNone, held)) + "\n";
   }
   BlobVerifier verifier = BlobVerifier::train(all.features(), all.labels());
   verifier.setCandidateRange(range);
-  printScores("training (all folders)", verifier, all);
-  verifier.save(a.output);
+  note += printScores("training (all folders)", verifier, all);
+  verifier.save(a.output, note);
   std::printf("wrote %s\n", a.output.c_str());
   return 0;
 }

@@ -1,5 +1,7 @@
 // The tracker's blobs in message form: our own Blob keeps inclusive edges; the cmvision-shaped
 // message uses CMVision's convention (right one past the last column, bottom the last row).
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include <opencv2/imgproc.hpp>
@@ -36,6 +38,10 @@ TEST(BlobConversions, CmvisionEdgesFollowCmvisionOnAKnownBox) {
   EXPECT_EQ(own.right, 19u);  // inclusive
   EXPECT_EQ(own.top, 5u);
   EXPECT_EQ(own.bottom, 14u);
+  EXPECT_TRUE(std::isnan(own.score)) << "no verifier: no score";
+  TrackedBlob scored = blobs[0];
+  scored.score = 0.75f;
+  EXPECT_FLOAT_EQ(blobToMsg(scored, "red").score, 0.75f);
   const CmvisionBlobs cm = cmvisionBlobsMsg(array, table);
   ASSERT_EQ(cm.blob_count, 1u);
   const CmvisionBlob& b = cm.blobs[0];

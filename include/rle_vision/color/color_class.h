@@ -32,6 +32,10 @@ struct ColorClass {
   Channels display_rgb{{255, 255, 255}};
   uint32_t min_area_px = 1;
   std::string source = "config";  // "config" or "learned"
+  // A learned verifier (verify/blob_verifier.h) judges this class's blobs: its model file, and
+  // the lowest score a published blob may have. Empty: colour alone decides.
+  std::string verifier_file;
+  double min_score = 0.5;
 
   // True when the channel value lies in [min, max] (or in the wrapped range).
   bool channelContains(int channel, uint8_t value) const {

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "rle_vision/segment/region_selection.h"
@@ -28,6 +29,8 @@ struct TrackedBlob {
   uint32_t id = 0;
   double vx = 0, vy = 0;  // px/s, 0 on first sight
   uint32_t age = 0;       // frames since first seen
+  // The verifier's score in [0, 1] (verify/candidate_screen.h); NaN for a class without one.
+  float score = std::numeric_limits<float>::quiet_NaN();
 };
 
 class BlobTracker {

@@ -54,7 +54,8 @@ class BlobVerifier {
 
   // The model and the candidate range as a YAML or XML file (OpenCV FileStorage), with the
   // feature count checked on load. Both throw std::runtime_error with the path and the reason.
-  void save(const std::string& path) const;
+  // `note` (how the model was made) goes at the top of the file as comment lines.
+  void save(const std::string& path, const std::string& note = "") const;
   static BlobVerifier load(const std::string& path);
 
  private:

@@ -63,6 +63,9 @@ std::string validateColorClasses(const std::vector<ColorClass>& classes) {
   for (const ColorClass& c : classes) {
     if (c.name.empty()) return "a colour class has an empty name";
     if (!names.insert(c.name).second) return "colour class name '" + c.name + "' is used twice";
+    if (!(c.min_score >= 0.0 && c.min_score <= 1.0)) {
+      return "colour class '" + c.name + "': min_score must be a score in 0..1, got " + std::to_string(c.min_score);
+    }
     static const char* kChannelNames[3][3] = {{"Y", "U", "V"}, {"R", "G", "B"}, {"H", "S", "V"}};
     for (int ch = 0; ch < 3; ++ch) {
       const bool hue = c.space == ColorSpace::HSV && ch == 0;

@@ -1,9 +1,11 @@
 #include <algorithm>
+#include <filesystem>
 #include <regex>
 #include <sstream>
 
 #include "rle_vision/io/color_config.h"
 #include "io/yaml_reader.h"
+#include "rle_vision/verify/blob_verifier.h"
 
 namespace rle_vision {
 namespace {
@@ -27,6 +29,31 @@ bool looksLikeCmvision(const std::string& text) {
   return false;
 }
 
+// A class's verifier_file (relative to the colours file's folder) and min_score. Without min and
+// max, the class's range is the one the verifier was trained on (kept in its file).
+void parseVerifier(const std::string& origin, const YAML::Node& node, ColorClass* c) {
+  using namespace yaml_reader;
+  c->verifier_file = stringValue(origin, node, "verifier_file", "");
+  c->min_score = number(origin, node, "min_score", 0.5, 0.0, 1.0);
+  if (c->verifier_file.empty()) {
+    if (node["min_score"]) fail(origin, node["min_score"], "class '" + c->name + "' has min_score but no verifier_file");
+    return;
+  }
+  const std::filesystem::path file(c->verifier_file);
+  if (file.is_relative()) {
+    c->verifier_file = (std::filesystem::path(origin).parent_path() / file).lexically_normal().string();
+  }
+  if (node["min"] || node["max"]) return;
+  try {
+    const ColorClass range = BlobVerifier::load(c->verifier_file).candidateRange();
+    c->space = range.space;
+    c->min = range.min;
+    c->max = range.max;
+  } catch (const std::exception& e) {
+    fail(origin, node["verifier_file"], std::string("class '") + c->name + "' takes its range from its verifier: " + e.what());
+  }
+}
+
 }  // namespace
 
 std::vector<ColorClass> parseColorClassesYaml(const std::string& text, const std::string& origin) {
@@ -38,7 +65,7 @@ std::vector<ColorClass> parseColorClassesYaml(const std::string& text, const std
   if (!list.IsSequence()) fail(origin, list, "'classes' must be a list");
   std::vector<ColorClass> classes;
   for (const YAML::Node& node : list) {
-    checkKeys(origin, node, {"name", "space", "min", "max", "display_rgb", "min_area_px"});
+    checkKeys(origin, node, {"name", "space", "min", "max", "display_rgb", "min_area_px", "verifier_file", "min_score"});
     ColorClass c;
     c.name = stringValue(origin, node, "name", "");
     if (c.name.empty()) fail(origin, node, "every class needs a non-empty 'name'");
@@ -46,9 +73,13 @@ std::vector<ColorClass> parseColorClassesYaml(const std::string& text, const std
     if (!parseColorSpace(space, &c.space)) {
       fail(origin, node["space"], "unknown colour space '" + space + "' (use YUV, RGB or HSV)");
     }
-    if (!node["min"] || !node["max"]) fail(origin, node, "class '" + c.name + "' needs 'min' and 'max'");
+    if ((!node["min"] || !node["max"]) && !node["verifier_file"]) {
+      fail(origin, node, "class '" + c.name + "' needs 'min' and 'max' (or a 'verifier_file' to take them from)");
+    }
+    if (!node["min"] != !node["max"]) fail(origin, node, "class '" + c.name + "' needs both 'min' and 'max' or neither");
     c.min = triple<uint8_t>(origin, node, "min", c.min, 0, 255, "integers 0..255");
     c.max = triple<uint8_t>(origin, node, "max", c.max, 0, 255, "integers 0..255");
+    parseVerifier(origin, node, &c);
     c.display_rgb = triple<uint8_t>(origin, node, "display_rgb", c.display_rgb, 0, 255, "integers 0..255");
     c.min_area_px = static_cast<uint32_t>(number(origin, node, "min_area_px", 1, 1, 1e9));
     c.source = "config";
@@ -150,6 +181,7 @@ std::string colorClassesToYaml(const std::vector<ColorClass>& classes) {
     out << "\n    display_rgb: ";
     list(c.display_rgb);
     out << "\n    min_area_px: " << c.min_area_px << "\n";
+    if (!c.verifier_file.empty()) out << "    verifier_file: " << c.verifier_file << "\n    min_score: " << c.min_score << "\n";
   }
   return out.str();
 }

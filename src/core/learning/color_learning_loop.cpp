@@ -44,7 +44,7 @@ ColorLearningLoop::Step ColorLearningLoop::learn(const cv::Mat& bgr, const Landm
     step.classes = withField(learner_->classes());
     const bool field_sent = std::any_of(step.classes.begin(), step.classes.end(),
                                         [](const ColorClass& c) { return c.name == kFieldClassName; });
-    published_field_ = has_field_ && field_sent ? field_ : ColorClass{""};  // a full set leaves it out
+    published_field_ = has_field_ && field_sent ? field_ : ColorClass();  // a full set leaves it out
     field_urgent_ = false;
     last_publish_s_ = now_s;
     published_once_ = published_learned_ = true;
@@ -104,7 +104,7 @@ ColorLearningLoop::Step ColorLearningLoop::stop(const LearningOptions& learning)
   step.publish = true;
   step.classes = configured_;
   published_learned_ = changes_pending_ = false;
-  published_field_ = ColorClass{""};
+  published_field_ = ColorClass();
   field_urgent_ = false;
   return step;
 }

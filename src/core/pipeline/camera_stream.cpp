@@ -5,7 +5,8 @@
 namespace rle_vision {
 
 CameraStream::CameraStream(const std::vector<ColorClass>& classes, const CameraStreamOptions& options)
-    : table_(std::make_shared<const ColorTable>(classes)), options_(options), loop_(classes), field_(options.field) {
+    : table_(std::make_shared<const ColorTable>(classes)), options_(options), loop_(classes),
+      screen_(loadClassVerifiers(classes), options.verifier_max_candidates_per_frame), field_(options.field) {
   for (const ColorClass& c : classes) {
     if (c.name == kFieldClassName) field_.setConfiguredColour(c);  // the floor's colour seeds from it
   }
@@ -15,6 +16,7 @@ void CameraStream::process(const cv::Mat& bgr, double stamp_s, Frame* frame) {
   frame->table = table_;
   frame->ignored_ranges.clear();
   tracker_.process(bgr, PixelFormat::BGR8, *table_, stamp_s, &frame->blobs);
+  frame->screening = screen_.apply(bgr, *table_, &frame->blobs);
   detector_.detectInImage(bgr, options_.landmark, &frame->landmarks);
   field_.detect(bgr, &frame->field);
   // As the Landmark node does: the floor's colour goes out with the learned ranges.

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include <opencv2/ml.hpp>
@@ -57,10 +59,12 @@ float BlobVerifier::score(const CandidateFeatures& features) const {
   return 1.0f / (1.0f + std::exp(-2.0f * sum));
 }
 
-void BlobVerifier::save(const std::string& path) const {
+void BlobVerifier::save(const std::string& path, const std::string& note) const {
   if (!trained()) throw std::runtime_error(path + ": no trained verifier to save");
   cv::FileStorage file(path, cv::FileStorage::WRITE);
   if (!file.isOpened()) throw std::runtime_error(path + ": cannot write the verifier file");
+  std::istringstream lines(note);
+  for (std::string line; std::getline(lines, line);) file.writeComment(line);
   file << "rle_vision_verifier" << "{";
   file << "feature_count" << kCandidateFeatureCount;
   const ColorClass& c = candidate_range_;
@@ -73,6 +77,7 @@ void BlobVerifier::save(const std::string& path) const {
 }
 
 BlobVerifier BlobVerifier::load(const std::string& path) {
+  if (!std::ifstream(path).good()) throw std::runtime_error(path + ": cannot read the verifier file (missing or unreadable)");
   cv::FileStorage file;
   try {
     file.open(path, cv::FileStorage::READ);

@@ -1,10 +1,12 @@
 // rle_vision_train on folders of synthetic labelled frames (a shaded ball among same-coloured
 // shapes): it writes a verifier that loads, prints the held-out figures of each folder (over
-// 90% of the ball candidates kept, over 90% of those kept on a ball), and refuses bad input with a one-line reason and exit status 2.
+// 90% of the ball candidates kept, over 90% of those kept on a ball) and that rle_vision_detect
+// --verifier uses on unseen frames; both refuse bad input with a one-line reason and exit status 2.
 #include <sys/wait.h>
 
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <string>
 
@@ -55,7 +57,7 @@ TEST(TrainCli, WritesAVerifierThatLoadsAndReportsHeldOutFolders) {
   ASSERT_EQ(status, 0) << out;
   // Each folder held out: the candidates on a ball kept, the others dropped (recall and
   // precision of the candidates over 90%).
-  const std::regex held("held out " + dir + "/([ab]) .*recall +([0-9.]+)%, precision +([0-9.]+)%");
+  const std::regex held("held out ([ab]) .*recall +([0-9.]+)%, precision +([0-9.]+)%");
   int folders = 0;
   for (std::sregex_iterator m(out.begin(), out.end(), held), end; m != end; ++m, ++folders) {
     EXPECT_GE(std::stod((*m)[2].str()), 90.0) << (*m)[0];
@@ -66,6 +68,33 @@ TEST(TrainCli, WritesAVerifierThatLoadsAndReportsHeldOutFolders) {
   EXPECT_TRUE(verifier.trained());
   EXPECT_EQ(verifier.candidateRange().name, "ball");
   std::printf("%s", out.c_str());
+  // How it was made is noted at the top of the file.
+  std::ifstream file(dir + "/ball_verifier.yml");
+  std::string head((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(head.find("# Made by rle_vision_train --class ball --label-class 0 --widen 16 from the folders a b (60 frames)"),
+            std::string::npos) << head.substr(0, 400);
+  EXPECT_NE(head.find("# held out a "), std::string::npos) << head.substr(0, 800);
+
+  // rle_vision_detect --verifier on frames neither folder had: the ball is found with its score
+  // (its class and range come from the verifier file), the same-coloured shapes are not.
+  cv::RNG rng(77);
+  const std::regex blob("\\{[^{}]*\"color\":\"ball\"[^{}]*\"cx\":([-0-9.e]+),\"cy\":([-0-9.e]+)[^{}]*\"score\":([0-9.e-]+)\\}");
+  int balls_found = 0, others_found = 0;
+  for (int i = 0; i < 10; ++i) {
+    const test::VerifierFrame f = test::drawVerifierFrame(rng);
+    ASSERT_TRUE(cv::imwrite(dir + "/unseen.png", f.bgr));
+    const std::string json = run(std::string(RLE_VISION_DETECT) + " --colors " + test::sourcePath("config/colors.yaml") +
+                                     " --verifier " + dir + "/ball_verifier.yml --min-score 0.5 " + dir + "/unseen.png",
+                                 &status);
+    ASSERT_EQ(status, 0) << json;
+    for (std::sregex_iterator m(json.begin(), json.end(), blob), end; m != end; ++m) {
+      EXPECT_GE(std::stod((*m)[3].str()), 0.5) << (*m)[0];
+      const cv::Point2d c(std::stod((*m)[1].str()), std::stod((*m)[2].str()));
+      (f.balls[0].contains(cv::Point(static_cast<int>(c.x), static_cast<int>(c.y))) ? balls_found : others_found) += 1;
+    }
+  }
+  EXPECT_GE(balls_found, 9);
+  EXPECT_LE(others_found, 1);
 }
 
 TEST(TrainCli, BadInputGetsOneLineAndStatusTwo) {
@@ -85,6 +114,17 @@ TEST(TrainCli, BadInputGetsOneLineAndStatusTwo) {
   EXPECT_NE(out.find("usage: rle_vision_train"), std::string::npos) << out;
   out = run(std::string(RLE_VISION_TRAIN) + " --class ball --label-class x --output v.yml " + dir, &status);
   EXPECT_EQ(status, 2);
+  // rle_vision_detect: a missing verifier, --min-score without one or out of 0..1.
+  const std::string image = dir + "/unlabelled/frame_0.png";
+  out = run(std::string(RLE_VISION_DETECT) + " --verifier " + dir + "/none.yml " + image, &status);
+  EXPECT_EQ(status, 2);
+  EXPECT_NE(out.find("rle_vision_detect: " + dir + "/none.yml: cannot read the verifier file"), std::string::npos) << out;
+  out = run(std::string(RLE_VISION_DETECT) + " --min-score 0.5 " + image, &status);
+  EXPECT_EQ(status, 2);
+  EXPECT_NE(out.find("--min-score needs --verifier"), std::string::npos) << out;
+  out = run(std::string(RLE_VISION_DETECT) + " --verifier v.yml --min-score 2 " + image, &status);
+  EXPECT_EQ(status, 2);
+  EXPECT_NE(out.find("--min-score needs a score from 0 to 1"), std::string::npos) << out;
 }
 
 }  // namespace

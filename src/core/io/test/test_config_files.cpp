@@ -60,7 +60,7 @@ TEST(ColorConfig, BrokenYamlNamesFileLineAndReason) {
   EXPECT_EQ(errorOf([&] { parseColorClassesYaml(head + "    min: [0, 1]\n    max: [1, 1, 1]\n", "c.yaml"); }),
             "c.yaml:3: 'min' must be a list of 3 integers 0..255");
   EXPECT_EQ(errorOf([&] { parseColorClassesYaml(head + "    min: [0, 0, 0]\n", "c.yaml"); }),
-            "c.yaml:2: class 'red' needs 'min' and 'max'");
+            "c.yaml:2: class 'red' needs 'min' and 'max' (or a 'verifier_file' to take them from)");
   EXPECT_NE(errorOf([&] { parseColorClassesYaml(head + "    mni: [0, 0, 0]\n", "c.yaml"); })
                 .find("c.yaml:3: unknown key 'mni'"),
             std::string::npos);

@@ -1,0 +1,176 @@
+// The verifier at run time, with known answers: on synthetic frames where a ball, a bar and a
+// patch share one colour, the tracker's blobs of that class are screened (the ball kept with its
+// score, the others dropped) while another class's blobs pass unscored; the cap scores the
+// largest candidates only; a colours file names the verifier and may take its range from it.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "rle_vision/io/color_config.h"
+#include "rle_vision/tracking/color_tracker.h"
+#include "rle_vision/verify/candidate_screen.h"
+#include "rle_vision/verify/verifier_training.h"
+#include "testing/test_helpers.h"
+#include "testing/verifier_scenes.h"
+
+namespace rle_vision {
+namespace {
+
+ColorClass yellowRange() { return test::makeClass("ball", ColorSpace::YUV, {{60, 0, 120}}, {{255, 110, 255}}, 20); }
+// Pure blue squares, far from the yellow range, in a class without a verifier.
+ColorClass blueRange() { return test::makeClass("goal", ColorSpace::YUV, {{0, 170, 0}}, {{255, 255, 110}}, 20); }
+
+std::shared_ptr<const BlobVerifier> trainedVerifier() {
+  static std::shared_ptr<const BlobVerifier> verifier = [] {
+    VerifierTrainingSet set(yellowRange());
+    cv::RNG rng(11);
+    for (int i = 0; i < 60; ++i) {
+      const test::VerifierFrame f = test::drawVerifierFrame(rng);
+      set.addFrame(f.bgr, f.balls);
+    }
+    BlobVerifier v = BlobVerifier::train(set.features(), set.labels());
+    v.setCandidateRange(yellowRange());
+    return std::make_shared<const BlobVerifier>(std::move(v));
+  }();
+  return verifier;
+}
+
+bool inside(const TrackedBlob& b, const cv::Rect& box) {
+  return b.region.cx >= box.x && b.region.cx < box.br().x && b.region.cy >= box.y && b.region.cy < box.br().y;
+}
+
+TEST(CandidateScreen, KeepsTheBallsWithTheirScoresDropsSameColouredShapesAndPassesOtherClasses) {
+  const ColorTable table({blueRange(), yellowRange()});  // the ball is label 2: found by name
+  CandidateScreen screen({{"ball", trainedVerifier(), 0.5}});
+  cv::RNG rng(99);
+  int balls = 0, balls_kept = 0, others_before = 0, others_kept = 0, goals = 0;
+  for (int i = 0; i < 30; ++i) {
+    test::VerifierFrame f = test::drawVerifierFrame(rng);
+    const cv::Rect goal(rng.uniform(0, 290), rng.uniform(0, 210), 24, 24);
+    cv::rectangle(f.bgr, goal, cv::Scalar(200, 40, 30), cv::FILLED);
+    ColorTracker tracker;
+    std::vector<TrackedBlob> blobs;
+    tracker.process(f.bgr, PixelFormat::BGR8, table, 0.0, &blobs);
+    std::vector<double> aligned;
+    for (const TrackedBlob& b : blobs) aligned.push_back(b.region.cx);
+    ASSERT_TRUE(screen.hasCandidates(table, blobs));
+    for (const TrackedBlob& b : blobs) others_before += b.region.label == 2 && !inside(b, f.balls[0]);
+    const ScreeningCounts counts = screen.apply(f.bgr, table, &blobs, &aligned);
+    EXPECT_EQ(counts.scored, counts.candidates);
+    EXPECT_EQ(counts.over_cap, 0u);
+    ASSERT_EQ(aligned.size(), blobs.size());
+    bool ball_kept = false;
+    for (size_t k = 0; k < blobs.size(); ++k) {
+      const TrackedBlob& b = blobs[k];
+      EXPECT_EQ(aligned[k], b.region.cx) << "the aligned values follow their blobs";
+      if (b.region.label == 1) {
+        EXPECT_TRUE(std::isnan(b.score)) << "a class without a verifier is not scored";
+        goals += inside(b, goal);
+        continue;
+      }
+      EXPECT_GE(b.score, 0.5f);
+      EXPECT_LE(b.score, 1.0f);
+      if (inside(b, f.balls[0])) ball_kept = true;
+      else ++others_kept;
+    }
+    ++balls;
+    balls_kept += ball_kept;
+  }
+  std::printf("[ screen ] %d/%d balls kept, %d/%d same-coloured shapes kept, %d goals passed\n", balls_kept, balls,
+              others_kept, others_before, goals);
+  EXPECT_GE(balls_kept, 28);
+  EXPECT_GE(others_before, 55);
+  EXPECT_LE(others_kept, 3);
+  EXPECT_EQ(goals, 30);
+}
+
+TEST(CandidateScreen, ScoresTheLargestCandidatesUpToTheCapAndDropsTheRestUnjudged) {
+  const ColorTable table({yellowRange()});
+  cv::Mat frame(120, 200, CV_8UC3, cv::Scalar(60, 120, 70));
+  const int sizes[3] = {8, 14, 11};  // squares, their order in the frame not their size order
+  for (int i = 0; i < 3; ++i) cv::rectangle(frame, cv::Rect(20 + 60 * i, 40, sizes[i], sizes[i]), cv::Scalar(40, 200, 230), cv::FILLED);
+  ColorTracker tracker;
+  std::vector<TrackedBlob> blobs;
+  tracker.process(frame, PixelFormat::BGR8, table, 0.0, &blobs);
+  ASSERT_EQ(blobs.size(), 3u);
+  CandidateScreen screen({{"ball", trainedVerifier(), 0.0}}, 2);  // min_score 0: whatever is scored is kept
+  const ScreeningCounts counts = screen.apply(frame, table, &blobs);
+  EXPECT_EQ(counts.candidates, 3u);
+  EXPECT_EQ(counts.scored, 2u);
+  EXPECT_EQ(counts.over_cap, 1u);
+  EXPECT_EQ(counts.rejected, 0u);
+  ASSERT_EQ(blobs.size(), 2u);
+  EXPECT_EQ(blobs[0].region.area, 14u * 14u);  // frame order kept among those scored
+  EXPECT_EQ(blobs[1].region.area, 11u * 11u);
+  for (const TrackedBlob& b : blobs) EXPECT_FALSE(std::isnan(b.score));
+  EXPECT_THROW(screen.apply(cv::Mat(120, 200, CV_8UC1), table, &blobs), std::invalid_argument);
+}
+
+TEST(CandidateScreen, ColoursFileNamesTheVerifierAndMayTakeItsRangeFromIt) {
+  const std::string dir = std::filesystem::path(testing::TempDir() + "/rle_vision_screen").lexically_normal().string();
+  std::system(("mkdir -p " + dir + "/models").c_str());
+  BlobVerifier copy = BlobVerifier::load([&] {
+    trainedVerifier()->save(dir + "/models/ball.yml");
+    return dir + "/models/ball.yml";
+  }());
+  std::ofstream(dir + "/colors.yaml") << "classes:\n  - name: ball\n    verifier_file: models/ball.yml\n    min_score: 0.7\n"
+                                         "  - name: goal\n    min: [0, 170, 0]\n    max: [255, 255, 110]\n";
+  const std::vector<ColorClass> classes = loadColorClasses(dir + "/colors.yaml");
+  ASSERT_EQ(classes.size(), 2u);
+  EXPECT_EQ(classes[0].verifier_file, dir + "/models/ball.yml");
+  EXPECT_DOUBLE_EQ(classes[0].min_score, 0.7);
+  EXPECT_EQ(classes[0].min, yellowRange().min) << "the range the verifier was trained on";
+  EXPECT_EQ(classes[0].max, yellowRange().max);
+  EXPECT_TRUE(classes[1].verifier_file.empty());
+  const std::vector<ClassVerifier> verifiers = loadClassVerifiers(classes);
+  ASSERT_EQ(verifiers.size(), 1u);
+  EXPECT_EQ(verifiers[0].class_name, "ball");
+  EXPECT_DOUBLE_EQ(verifiers[0].min_score, 0.7);
+  // The written colours file reads back the same.
+  std::ofstream(dir + "/written.yaml") << colorClassesToYaml(classes);
+  const std::vector<ColorClass> again = loadColorClasses(dir + "/written.yaml");
+  EXPECT_EQ(again[0].verifier_file, classes[0].verifier_file);
+  EXPECT_DOUBLE_EQ(again[0].min_score, 0.7);
+  EXPECT_EQ(again[0].min, classes[0].min);
+  // Refused with the reason: min_score alone, out of 0..1, a missing model, half a range.
+  const std::string bad[] = {"classes:\n  - name: b\n    min: [0,0,0]\n    max: [9,9,9]\n    min_score: 0.5\n",
+                             "classes:\n  - name: b\n    verifier_file: models/ball.yml\n    min_score: 1.5\n",
+                             "classes:\n  - name: b\n    verifier_file: models/none.yml\n",
+                             "classes:\n  - name: b\n    verifier_file: models/ball.yml\n    min: [0,0,0]\n"};
+  const std::string reasons[] = {"no verifier_file", "min_score", "takes its range from its verifier", "both 'min' and 'max'"};
+  for (int i = 0; i < 4; ++i) {
+    std::ofstream(dir + "/bad.yaml") << bad[i];
+    try {
+      loadColorClasses(dir + "/bad.yaml");
+      ADD_FAILURE() << "accepted: " << bad[i];
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find(reasons[i]), std::string::npos) << e.what();
+    }
+  }
+  // A model named with a range given is only read when the verifiers are loaded.
+  std::ofstream(dir + "/bad.yaml") << "classes:\n  - name: b\n    verifier_file: models/none.yml\n    min: [0,0,0]\n"
+                                      "    max: [9,9,9]\n";
+  EXPECT_THROW(loadClassVerifiers(loadColorClasses(dir + "/bad.yaml")), std::runtime_error);
+}
+
+// The model the package ships loads without the data it was trained on, small, for the ball.
+TEST(CandidateScreen, ShippedBallVerifierLoads) {
+  const std::string path = test::sourcePath("config/ball_verifier.yml");
+  const BlobVerifier shipped = BlobVerifier::load(path);
+  EXPECT_TRUE(shipped.trained());
+  EXPECT_EQ(shipped.candidateRange().name, "ball");
+  EXPECT_LT(std::filesystem::file_size(path), 200u * 1024u);
+  std::ifstream file(path);
+  std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("# Made by rle_vision_train --class ball"), std::string::npos) << "how it was made";
+}
+
+}  // namespace
+}  // namespace rle_vision
