@@ -12,6 +12,7 @@
 
 #include "eval/benchmark_frame.h"
 #include "harness.h"
+#include "verifier_timing.h"
 #include "eval/opencv_pipeline.h"
 #include "rle_vision/tracking/blob_tracker.h"
 #include "rle_vision/learning/color_calibration.h"
@@ -287,6 +288,9 @@ int main(int argc, char** argv) {
   const bool have_real = !real_folder.empty() && realFrame(real_folder, &real, &real_classes);
   const FrameTimes real_times = have_real ? timeFrame(real, real_classes) : FrameTimes();
 
+  const bench::VerifierTimes verifier =
+      bench::timeVerifier(frame.image, classes, source_dir + "/config/ball_verifier.yml");
+
   const double ratio_to_memcpy = clean.frame.bgr_ms / clean.memcpy_ms;
   printClean(frame, classes.size(), clean);
   printFrame("noise sigma 25", noise25);
@@ -300,6 +304,11 @@ int main(int argc, char** argv) {
   std::printf("    %-42s targets: segment + tracker bgr8 <= 0.5 ms\n", "");
   printBounded("noise sigma 60", bounded60);
   std::printf("    %-42s targets: segment + tracker yuv422 <= 1.6 ms, bgr8 <= 3 ms\n", "");
+  std::printf("  verifier (config/ball_verifier.yml), %zu candidates on the 640x480 frame, %zu scored (the cap):\n",
+              verifier.candidates, verifier.scored);
+  std::printf("    %-42s %8.3f ms\n", "segment + tracker alone", verifier.tracker_ms);
+  std::printf("    %-42s %8.3f ms  (%.2f us a candidate; target <= 0.2 ms at 50)\n", "verifier: features and score",
+              verifier.verifier_ms, 1e3 * verifier.verifier_ms / std::max<size_t>(1, verifier.scored));
   Values values = {{"tracker_ms", clean.frame.bgr_ms},
                    {"tracker_yuv422_ms", clean.frame.uyvy_ms},
                    {"tracker_ms_with_updates", clean.with_updates_ms},
@@ -313,6 +322,10 @@ int main(int argc, char** argv) {
   addFrame("real", real_times, &values);
   addBounded("noise25", bounded25, &values);
   addBounded("noise60", bounded60, &values);
+  values.push_back({"verifier_candidates", static_cast<double>(verifier.candidates)});
+  values.push_back({"verifier_scored", static_cast<double>(verifier.scored)});
+  values.push_back({"verifier_frame_tracker_ms", verifier.tracker_ms});
+  values.push_back({"verifier_ms", verifier.verifier_ms});
   bench::writeJson(json_path, values);
   std::printf("wrote %s\n", json_path.c_str());
   return 0;

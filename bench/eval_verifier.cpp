@@ -7,7 +7,10 @@
 // what OpenCV's inRange pipeline finds at the same range), and the verifier with the field side
 // filter. Recall is over every labelled ball and over the balls on the field side.
 //
-//   rle_vision_eval_verifier [--label-class N] [--widen LEVELS] [--json OUT] DIR
+// --compare-models also trains OpenCV ml's SVM and MLP on the same candidates (not in make eval:
+// minutes more) and prints their held-out recall and precision beside the boosted trees'.
+//
+//   rle_vision_eval_verifier [--label-class N] [--widen LEVELS] [--compare-models] [--json OUT] DIR
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -20,6 +23,7 @@
 
 #include "ball_scoring.h"
 #include "harness.h"
+#include "verifier_alternatives.h"
 #include "rle_vision/io/yolo_labels.h"
 #include "rle_vision/learning/color_calibration.h"
 #include "rle_vision/verify/blob_verifier.h"
@@ -34,11 +38,13 @@ using Date = bench::LabelledDate;
 
 struct HeldOutScore {
   BallScore range, loose, verified, verified_on_field;
+  BallScore svm, mlp, boost_with_field;  // --compare-models
   int train_candidates = 0, train_positives = 0;
   double verify_ms = 0;  // features and scores, all frames
   int candidates = 0;
   void add(const HeldOutScore& o) {
     range.add(o.range), loose.add(o.loose), verified.add(o.verified), verified_on_field.add(o.verified_on_field);
+    svm.add(o.svm), mlp.add(o.mlp), boost_with_field.add(o.boost_with_field);
     train_candidates += o.train_candidates, train_positives += o.train_positives;
     verify_ms += o.verify_ms, candidates += o.candidates;
   }
@@ -51,27 +57,68 @@ const char* const kMethodNames[] = {"calibrated range alone (= OpenCV inRange)",
                                     "loosened range + verifier",
                                     "loosened range + verifier, field side only"};
 
-// The candidates of `dates`' frames (blobs of `range`) and their labels.
-VerifierTrainingSet collect(const std::vector<const Date*>& dates, const ColorClass& range, int label_class) {
+// How far a candidate lies above the frame's field boundary, in image heights (0 without one):
+// the feature --compare-models adds. Its centroid, as the features keep it.
+float heightAboveField(const FieldResult& field, double cx, double cy, int rows) {
+  return field.boundary.found ? static_cast<float>(field.boundary.heightAbove(cx, cy) / rows) : 0.0f;
+}
+
+// The candidates of `dates`' frames (blobs of `range`) and their labels; with `above_field`, also
+// each candidate's height above the field boundary.
+VerifierTrainingSet collect(const std::vector<const Date*>& dates, const ColorClass& range, int label_class,
+                            cv::Mat* above_field = nullptr) {
   VerifierTrainingSet set(range, bench::kMinBallBlobArea);
   for (const Date* d : dates) {
     for (const std::string& path : d->images) {
       const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
       if (bgr.empty()) throw std::runtime_error(path + ": cannot read the image");
+      const int before = set.features().rows;
       set.addFrame(bgr, readYoloBoxes(yoloLabelPath(path), label_class, bgr.size()));
+      if (!above_field || set.features().rows == before) continue;
+      FieldResult field;
+      FieldDetector().detect(bgr, &field);
+      for (int i = before; i < set.features().rows; ++i) {  // features 4 and 5: the centroid's row and column
+        const float* f = set.features().ptr<float>(i);
+        above_field->push_back(heightAboveField(field, f[5] * bgr.cols, f[4] * bgr.rows, bgr.rows));
+      }
     }
   }
   return set;
 }
 
-HeldOutScore evaluate(const Date& held_out, const std::vector<const Date*>& training, int label_class, int widen) {
+using bench::AlternativeModel;
+
+// --compare-models: the candidate kept by each alternative model (the last one also sees the
+// candidate's height above the field).
+void keepByAlternatives(const std::vector<AlternativeModel>& models, const CandidateFeatures& x, float above_field,
+                        const Region& r, std::vector<cv::Point2d> kept_by[3]) {
+  cv::Mat row(1, kCandidateFeatureCount + 1, CV_32F);
+  std::copy(x.begin(), x.end(), row.ptr<float>());
+  row.at<float>(0, kCandidateFeatureCount) = above_field;
+  for (size_t k = 0; k < models.size(); ++k) {
+    const cv::Mat features = k + 1 < models.size() ? row.colRange(0, kCandidateFeatureCount) : row;
+    if (models[k].keep(features)) kept_by[k].emplace_back(r.cx, r.cy);
+  }
+}
+
+HeldOutScore evaluate(const Date& held_out, const std::vector<const Date*>& training, int label_class, int widen,
+                      bool compare_models) {
   HeldOutScore s;
   const ColorClass calibrated = bench::calibrateBall(training, label_class);
   const ColorClass candidates_range = widenedRange(calibrated, widen);
-  const VerifierTrainingSet set = collect(training, candidates_range, label_class);
+  cv::Mat above_field;
+  const VerifierTrainingSet set = collect(training, candidates_range, label_class, compare_models ? &above_field : nullptr);
   s.train_candidates = static_cast<int>(set.labels().size());
   s.train_positives = set.positives();
   const BlobVerifier verifier = BlobVerifier::train(set.features(), set.labels());
+  std::vector<AlternativeModel> alternatives;
+  if (compare_models) {
+    alternatives.emplace_back(AlternativeModel::Kind::kSvm, set.features(), set.labels());
+    alternatives.emplace_back(AlternativeModel::Kind::kMlp, set.features(), set.labels());
+    cv::Mat with_field;
+    cv::hconcat(set.features(), above_field, with_field);
+    alternatives.emplace_back(AlternativeModel::Kind::kBoostWithField, with_field, set.labels());
+  }
   bench::BallMethods range_alone(calibrated);
   const ColorTable table({candidates_range});
   Segmenter segmenter;
@@ -88,12 +135,13 @@ HeldOutScore evaluate(const Date& held_out, const std::vector<const Date*>& trai
     range_alone.ours(bgr, truth, field, &s.range, &unused);
     const auto start = std::chrono::steady_clock::now();
     segmenter.segment(bgr, PixelFormat::BGR8, table, &regions);
-    std::vector<cv::Point2d> kept, kept_on_field, all;
+    std::vector<cv::Point2d> kept, kept_on_field, all, kept_by[3];
     for (const Region& r : regions) {
       if (r.area < bench::kMinBallBlobArea) continue;
       ++s.candidates;
       all.emplace_back(r.cx, r.cy);
       candidateFeatures(bgr, r, &x);
+      if (compare_models) keepByAlternatives(alternatives, x, heightAboveField(field, r.cx, r.cy, bgr.rows), r, kept_by);
       if (verifier.score(x) < 0.5f) continue;
       kept.emplace_back(r.cx, r.cy);
       if (!field.boundary.found || field.boundary.heightAbove(r.cx, r.bottom_at_cx) <= bench::kOnFieldMarginPx) {
@@ -105,6 +153,11 @@ HeldOutScore evaluate(const Date& held_out, const std::vector<const Date*>& trai
     bench::scoreBlobs(all, truth, 0, &s.loose);
     bench::scoreBlobs(kept, truth, ms, &s.verified);
     bench::scoreBlobs(kept_on_field, truth, ms + field.ms, &s.verified_on_field);
+    if (compare_models) {
+      bench::scoreBlobs(kept_by[0], truth, 0, &s.svm);
+      bench::scoreBlobs(kept_by[1], truth, 0, &s.mlp);
+      bench::scoreBlobs(kept_by[2], truth, 0, &s.boost_with_field);
+    }
   }
   return s;
 }
@@ -125,7 +178,7 @@ void addValues(const std::string& prefix, const HeldOutScore& s, std::vector<std
   values->emplace_back(prefix + ".verify_us_per_candidate", s.candidates ? 1000.0 * s.verify_ms / s.candidates : 0);
 }
 
-void run(const std::vector<Date>& dates, int label_class, int widen, const std::string& json) {
+void run(const std::vector<Date>& dates, int label_class, int widen, bool compare_models, const std::string& json) {
   std::printf("rle_vision eval (ball verifier): each date held out, calibrated and trained on the others; "
               "candidates: the calibrated range widened by %d levels\n", widen);
   std::printf("%-10s %-46s %6s %7s %7s %6s %9s %8s\n", "held out", "method", "balls", "recall", "field-r", "blobs",
@@ -138,8 +191,13 @@ void run(const std::vector<Date>& dates, int label_class, int widen, const std::
     for (const Date& d : dates) {
       if (&d != &held_out) training.push_back(&d);
     }
-    const HeldOutScore s = evaluate(held_out, training, label_class, widen);
+    const HeldOutScore s = evaluate(held_out, training, label_class, widen, compare_models);
     for (size_t m = 0; m < kMethods.size(); ++m) printRow(held_out.name, kMethodNames[m], s.*kMethods[m].second);
+    if (compare_models) {
+      printRow(held_out.name, AlternativeModel::name(AlternativeModel::Kind::kSvm), s.svm);
+      printRow(held_out.name, AlternativeModel::name(AlternativeModel::Kind::kMlp), s.mlp);
+      printRow(held_out.name, AlternativeModel::name(AlternativeModel::Kind::kBoostWithField), s.boost_with_field);
+    }
     addValues("dates." + held_out.name, s, &values);
     all.add(s);
     for (const auto& m : kMethods) {
@@ -151,6 +209,11 @@ void run(const std::vector<Date>& dates, int label_class, int widen, const std::
     }
   }
   for (size_t m = 0; m < kMethods.size(); ++m) printRow("pooled", kMethodNames[m], all.*kMethods[m].second);
+  if (compare_models) {
+    printRow("pooled", AlternativeModel::name(AlternativeModel::Kind::kSvm), all.svm);
+    printRow("pooled", AlternativeModel::name(AlternativeModel::Kind::kMlp), all.mlp);
+    printRow("pooled", AlternativeModel::name(AlternativeModel::Kind::kBoostWithField), all.boost_with_field);
+  }
   std::printf("verifier: %.1f us per candidate (features and score), %.1f candidates per frame\n",
               all.candidates ? 1000.0 * all.verify_ms / all.candidates : 0.0,
               all.range.frames ? static_cast<double>(all.candidates) / all.range.frames : 0.0);
@@ -165,9 +228,12 @@ void run(const std::vector<Date>& dates, int label_class, int widen, const std::
 
 int main(int argc, char** argv) {
   std::string root, json, label_class = "0", widen = "16";
+  bool compare_models = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if ((arg == "--json" || arg == "--label-class" || arg == "--widen") && i + 1 < argc) {
+    if (arg == "--compare-models") {
+      compare_models = true;
+    } else if ((arg == "--json" || arg == "--label-class" || arg == "--widen") && i + 1 < argc) {
       (arg == "--json" ? json : arg == "--widen" ? widen : label_class) = argv[++i];
     } else {
       root = arg;
@@ -178,13 +244,14 @@ int main(int argc, char** argv) {
                        label_class.size() <= 6 && !widen.empty() && widen.find_first_not_of("0123456789") == std::string::npos &&
                        widen.size() <= 3;
   if (dates.size() < 2 || !numbers) {
-    std::cerr << "usage: rle_vision_eval_verifier [--label-class N] [--widen LEVELS] [--json OUT] DIR (its folders: "
+    std::cerr << "usage: rle_vision_eval_verifier [--label-class N] [--widen LEVELS] [--compare-models] [--json OUT] DIR "
+                 "(its folders: "
                  "two or more dates)\n";
     return 2;
   }
   bench::pinToOneCpu();
   try {
-    run(dates, std::stoi(label_class), std::stoi(widen), json);
+    run(dates, std::stoi(label_class), std::stoi(widen), compare_models, json);
   } catch (const std::exception& e) {
     std::cerr << "rle_vision_eval_verifier: " << e.what() << "\n";
     return 2;

@@ -21,22 +21,40 @@ cv::Rect grown(const Region& r, double margin, const cv::Size& size) {
   return cv::Rect(r.left - m, r.top - m, w + 2 * m, h + 2 * m) & cv::Rect(cv::Point(), size);
 }
 
-// Mean and standard deviation of the YUV pixels of `yuv` inside `inner` (or, with `ring`,
-// outside `inner`).
-void yuvStats(const cv::Mat& yuv, const cv::Rect& inner, bool ring, double mean[3], double sd[3]) {
-  double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
-  size_t n = 0;
-  for (int y = 0; y < yuv.rows; ++y) {
-    const cv::Vec3b* row = yuv.ptr<cv::Vec3b>(y);
-    for (int x = 0; x < yuv.cols; ++x) {
-      if (inner.contains(cv::Point(x, y)) == ring) continue;
-      for (int c = 0; c < 3; ++c) sum[c] += row[x][c], sum2[c] += row[x][c] * row[x][c];
-      ++n;
-    }
+// Mean and standard deviation of the YUV pixels of `grid` inside `inner` (box) and outside it
+// (ring), in one pass.
+void yuvStats(const cv::Mat& grid, const cv::Rect& inner, double box_mean[3], double box_sd[3], double ring_mean[3],
+              double ring_sd[3]) {
+  int64_t sum[2][3] = {}, sum2[2][3] = {};
+  size_t n[2] = {0, 0};
+  for (int y = 0; y < grid.rows; ++y) {
+    const uint8_t* row = grid.ptr<uint8_t>(y);
+    const bool rows_inner = y >= inner.y && y < inner.y + inner.height;
+    const int x0 = rows_inner ? std::clamp(inner.x, 0, grid.cols) : grid.cols;
+    const int x1 = rows_inner ? std::clamp(inner.x + inner.width, x0, grid.cols) : grid.cols;
+    auto add = [&](int from, int to, int which) {
+      for (int x = from; x < to; ++x) {
+        const uint8_t* yuv = row + 3 * x;
+        for (int c = 0; c < 3; ++c) {
+          const int v = yuv[c];
+          sum[which][c] += v;
+          sum2[which][c] += v * v;
+        }
+      }
+      n[which] += static_cast<size_t>(std::max(0, to - from));
+    };
+    add(0, x0, 1);
+    add(x0, x1, 0);
+    add(x1, grid.cols, 1);
   }
-  for (int c = 0; c < 3; ++c) {
-    mean[c] = n ? sum[c] / n : 0;
-    sd[c] = n ? std::sqrt(std::max(0.0, sum2[c] / n - mean[c] * mean[c])) : 0;
+  double* means[2] = {box_mean, ring_mean};
+  double* sds[2] = {box_sd, ring_sd};
+  for (int which = 0; which < 2; ++which) {
+    for (int c = 0; c < 3; ++c) {
+      const double mean = n[which] ? static_cast<double>(sum[which][c]) / n[which] : 0;
+      means[which][c] = mean;
+      sds[which][c] = n[which] ? std::sqrt(std::max(0.0, static_cast<double>(sum2[which][c]) / n[which] - mean * mean)) : 0;
+    }
   }
 }
 
@@ -92,8 +110,7 @@ void candidateFeatures(const cv::Mat& bgr, const Region& r, CandidateFeatures* o
   const cv::Rect inner(static_cast<int>(std::floor((box.x - around.x) * sx)), static_cast<int>(std::floor((box.y - around.y) * sy)),
                        std::max(1, static_cast<int>(std::ceil(box.width * sx))), std::max(1, static_cast<int>(std::ceil(box.height * sy))));
   double box_mean[3], box_sd[3], ring_mean[3], ring_sd[3];
-  yuvStats(yuv, inner, false, box_mean, box_sd);
-  yuvStats(yuv, inner, true, ring_mean, ring_sd);
+  yuvStats(yuv, inner, box_mean, box_sd, ring_mean, ring_sd);
   for (int c = 0; c < 3; ++c) *f++ = static_cast<float>(box_mean[c] / 255.0);
   for (int c = 0; c < 3; ++c) *f++ = static_cast<float>(box_sd[c] / 255.0);
   for (int c = 0; c < 3; ++c) *f++ = static_cast<float>(ring_mean[c] / 255.0);
