@@ -3,6 +3,13 @@
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 WS="$ROOT/.ws"
 export PATH="/usr/bin:/bin:$PATH"
+# ROS from /opt/ros (Ubuntu 20.04 + Noetic); Debian's ROS lives under /usr and needs nothing.
+for ros_setup in /opt/ros/"${ROS_DISTRO:-*}"/setup.bash; do
+  if [[ -f "$ros_setup" ]]; then
+    case $- in *u*) set +u; source "$ros_setup"; set -u ;; *) source "$ros_setup" ;; esac
+    break
+  fi
+done
 export ROS_HOME="${ROS_HOME:-$WS/ros_home}"
 export ROSCONSOLE_FORMAT='[${severity}] [${node}]: ${message}'
 source_workspace() {

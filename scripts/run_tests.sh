@@ -20,6 +20,11 @@ fi
 # The core built on its own with plain CMake (no ROS in it), and the package's install space.
 JUNIT_DIR="$results/checks" "$ROOT/scripts/test_core_plain.sh" || true
 JUNIT_DIR="$results/checks" "$ROOT/scripts/test_install_space.sh" || true
+# The set-up: package.xml declares what it installs; its Noetic branch, as a dry run.
+JUNIT_DIR="$results/checks" "$ROOT/scripts/test_setup.sh" || true
+# A user's package built against the devel space and against the install space.
+JUNIT_DIR="$results/checks" "$ROOT/scripts/test_downstream.sh" devel || true
+JUNIT_DIR="$results/checks" "$ROOT/scripts/test_downstream.sh" install || true
 # Every shell command block of README.md and docs/*.md, as a new user would run it, and the
 # generated tables of docs/ (figures, parameters).
 "$ROOT/scripts/test_readme.sh" --junit "$results/checks/readme.xml" || true

@@ -13,7 +13,7 @@ CHECK_LOG_DIR="$build/logs" && mkdir -p "$CHECK_LOG_DIR"
 source "$(dirname "$0")/checks.sh"
 check configure cmake -S "$ROOT/src/core" -B "$build/core" -DCMAKE_BUILD_TYPE=Release -DRLE_VISION_WERROR=ON
 check build cmake --build "$build/core" -j"${JOBS:-2}"
-check ctest ctest --test-dir "$build/core" --output-on-failure
+check ctest sh -c "cd '$build/core' && ctest --output-on-failure"  # CMake 3.16 (Ubuntu 20.04): no --test-dir
 # Every header compiled into the core, from the compiler's dependency files: none may belong
 # to a ROS package (Debian installs ROS headers under /usr/include, so an include of one would
 # compile here and fail on a machine without ROS).
@@ -40,6 +40,7 @@ mkdir -p "$build/user"
 cat >"$build/user/CMakeLists.txt" <<'CMAKE'
 cmake_minimum_required(VERSION 3.10)
 project(user CXX)
+set(CMAKE_CXX_STANDARD 14)  # GCC 9's default: the core's targets must raise it to C++17
 find_package(rle_vision_core REQUIRED)
 add_executable(user user.cpp)
 target_link_libraries(user rle_vision::config rle_vision::core)
@@ -48,8 +49,11 @@ cat >"$build/user/user.cpp" <<'CPP'
 #include <Eigen/Core>
 #include "rle_vision/io/color_config.h"
 #include "rle_vision/io/data_files.h"
+#include "rle_vision/common/latest_mailbox.h"
 #include "rle_vision/landmark/landmark_detector.h"
 int main() {
+  rle_vision::LatestMailbox<int> mailbox;  // std::optional inside: C++17
+  mailbox.put(1);
   rle_vision::LandmarkDetector detector;
   const Eigen::Vector2d unused(0, 0);
   return rle_vision::loadColorClasses(rle_vision::packageDataFile("config/colors.yaml")).empty() ? 1 : 0;

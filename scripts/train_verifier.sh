@@ -13,6 +13,10 @@ if (( ${#dates[@]} == 0 )); then
   echo "[train] no labelled MSL frames under $data (EVAL_DATA_DIR=...)"
   exit 1
 fi
-ball_class=$(grep -nx 'ball' "$data/obj.names" | cut -d: -f1)
+ball_class=$(tr -d '\r' < "$data/obj.names" 2>/dev/null | grep -nx 'ball' | cut -d: -f1 || true)
+if [[ -z "$ball_class" ]]; then
+  echo "[train] no 'ball' line in $data/obj.names (the YOLO class names)"
+  exit 1
+fi
 "$WS/devel/lib/rle_vision/rle_vision_train" --class ball --label-class $((ball_class - 1)) --output "$output" "${dates[@]}"
 echo "[train] wrote $output ($(du -k "$output" | cut -f1) KB)"

@@ -163,8 +163,16 @@ std::vector<ColorClass> mergedClasses(const std::string& path, const ColorClass&
   std::vector<ColorClass> classes;
   if (!path.empty() && std::ifstream(path).good()) classes = loadColorClasses(path);
   auto same = std::find_if(classes.begin(), classes.end(), [&](const ColorClass& k) { return k.name == c.name; });
-  if (same != classes.end()) *same = c;
-  else classes.push_back(c);
+  if (same != classes.end()) {
+    // The new range replaces the old; a verifier the class had stays with it.
+    ColorClass replaced = c;
+    replaced.verifier_file = same->verifier_file;
+    replaced.verifier_path = same->verifier_path;
+    replaced.min_score = same->min_score;
+    *same = replaced;
+  } else {
+    classes.push_back(c);
+  }
   return classes;
 }
 

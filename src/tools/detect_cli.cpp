@@ -255,7 +255,7 @@ std::vector<ColorClass> colorClasses(const Arguments& args) {
   const ColorClass range = BlobVerifier::load(args.verifier_file).candidateRange();
   auto it = std::find_if(classes.begin(), classes.end(), [&](const ColorClass& c) { return c.name == range.name; });
   if (it == classes.end()) it = classes.insert(classes.begin(), range);
-  it->verifier_file = args.verifier_file;
+  it->verifier_file = it->verifier_path = args.verifier_file;
   it->min_score = args.min_score;
   const std::string problem = validateColorClasses(classes);
   if (!problem.empty()) throw ConfigError(args.verifier_file + ": " + problem);

@@ -82,7 +82,8 @@ class VerifierPipelineTest(unittest.TestCase):
         rospy.Subscriber('/diagnostics', DiagnosticArray, on_diagnostics, queue_size=20)
         pub = rospy.Publisher('/%s/image_raw' % CAMERA, Image, queue_size=2)
         pipeline = subprocess.Popen(['roslaunch', 'rle_vision', 'pipeline.launch', 'camera:=' + CAMERA,
-                                     'colors_file:=' + self.colors, 'compressed:=false'],
+                                     'colors_file:=' + self.colors, 'compressed:=false',
+                                     'learning:=false'],  # the candidates stay the verifier's own range
                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
         try:
             require(lambda: pub.get_num_connections() > 0, 60 * SLOW, 'the pipeline subscribing to the image')

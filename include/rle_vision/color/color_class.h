@@ -32,9 +32,12 @@ struct ColorClass {
   Channels display_rgb{{255, 255, 255}};
   uint32_t min_area_px = 1;
   std::string source = "config";  // "config" or "learned"
-  // A learned verifier (verify/blob_verifier.h) judges this class's blobs: its model file, and
-  // the lowest score a published blob may have. Empty: colour alone decides.
+  // A learned verifier (verify/blob_verifier.h) judges this class's blobs: its model file as
+  // written in the colours file (relative to that file's folder, or absolute; written back as
+  // it is), the file to load (verifier_file resolved when the colours are read), and the lowest
+  // score a published blob may have. Empty: colour alone decides.
   std::string verifier_file;
+  std::string verifier_path;
   double min_score = 0.5;
 
   // True when the channel value lies in [min, max] (or in the wrapped range).

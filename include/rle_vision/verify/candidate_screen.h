@@ -25,7 +25,7 @@ struct ClassVerifier {
   double min_score = 0.5;
 };
 
-// The verifiers the classes name (ColorClass::verifier_file), loaded. Throws std::runtime_error
+// The verifiers the classes name (ColorClass::verifier_path, else verifier_file), loaded. Throws std::runtime_error
 // naming the class and the file when one cannot be read.
 std::vector<ClassVerifier> loadClassVerifiers(const std::vector<ColorClass>& classes);
 

@@ -35,17 +35,20 @@ void parseVerifier(const std::string& origin, const YAML::Node& node, ColorClass
   using namespace yaml_reader;
   c->verifier_file = stringValue(origin, node, "verifier_file", "");
   c->min_score = number(origin, node, "min_score", 0.5, 0.0, 1.0);
+  if (node["verifier_file"] && c->verifier_file.empty()) {
+    fail(origin, node["verifier_file"], "class '" + c->name + "': verifier_file is empty (name a file, or leave the key out)");
+  }
   if (c->verifier_file.empty()) {
     if (node["min_score"]) fail(origin, node["min_score"], "class '" + c->name + "' has min_score but no verifier_file");
     return;
   }
   const std::filesystem::path file(c->verifier_file);
-  if (file.is_relative()) {
-    c->verifier_file = (std::filesystem::path(origin).parent_path() / file).lexically_normal().string();
-  }
+  c->verifier_path = file.is_relative()
+                         ? (std::filesystem::path(origin).parent_path() / file).lexically_normal().string()
+                         : c->verifier_file;
   if (node["min"] || node["max"]) return;
   try {
-    const ColorClass range = BlobVerifier::load(c->verifier_file).candidateRange();
+    const ColorClass range = BlobVerifier::load(c->verifier_path).candidateRange();
     c->space = range.space;
     c->min = range.min;
     c->max = range.max;

@@ -9,9 +9,9 @@ std::vector<ClassVerifier> loadClassVerifiers(const std::vector<ColorClass>& cla
   std::vector<ClassVerifier> verifiers;
   for (const ColorClass& c : classes) {
     if (c.verifier_file.empty()) continue;
+    const std::string& path = c.verifier_path.empty() ? c.verifier_file : c.verifier_path;
     try {
-      verifiers.push_back({c.name, std::make_shared<const BlobVerifier>(BlobVerifier::load(c.verifier_file)),
-                           c.min_score});
+      verifiers.push_back({c.name, std::make_shared<const BlobVerifier>(BlobVerifier::load(path)), c.min_score});
     } catch (const std::exception& e) {
       throw std::runtime_error("colour class '" + c.name + "': cannot load its verifier_file: " + e.what());
     }

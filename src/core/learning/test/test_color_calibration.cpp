@@ -226,6 +226,16 @@ TEST(CalibrateCli, WritesTheClassFromBoxesOrYoloLabelsAndRefusesBadInput) {
   const CalibrationResult core = calibrateColorClass({{"f", cv::imread(dir + "/f.png"), {box}}}, "ball");
   EXPECT_EQ(from_box[0].min, core.color_class.min);
   EXPECT_EQ(from_box[0].max, core.color_class.max);
+  // Calibrating a class that has a verifier keeps it, its path as written (relative to the file).
+  std::ofstream(dir + "/verified.yaml") << "classes:\n  - name: ball\n    min: [0, 0, 0]\n    max: [9, 9, 9]\n"
+                                           "    verifier_file: models/ball.yml\n    min_score: 0.7\n";
+  run(tool + " --name ball " + dir + "/f.png" + box_arg + " --output " + dir + "/verified.yaml 2>/dev/null", &status);
+  ASSERT_EQ(status, 0);
+  const std::vector<ColorClass> verified = loadColorClasses(dir + "/verified.yaml");
+  ASSERT_EQ(verified.size(), 1u);
+  EXPECT_EQ(verified[0].min, core.color_class.min);
+  EXPECT_EQ(verified[0].verifier_file, "models/ball.yml");
+  EXPECT_DOUBLE_EQ(verified[0].min_score, 0.7);
   // The same box as a YOLO label (class 3), and another class's label, on a blue object, that
   // must be ignored (taken, it would be dropped and counted, or widen the range).
   cv::rectangle(image, cv::Rect(12, 9, 12, 9), cv::Scalar(200, 60, 30), cv::FILLED);

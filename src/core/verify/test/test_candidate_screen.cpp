@@ -91,6 +91,29 @@ TEST(CandidateScreen, KeepsTheBallsWithTheirScoresDropsSameColouredShapesAndPass
   EXPECT_EQ(goals, 30);
 }
 
+// A colour set swapped in at run time (learned ranges) may order the classes otherwise: the
+// verifier follows its class by name, with one screen across both tables.
+TEST(CandidateScreen, FollowsItsClassByNameWhenTheTableChanges) {
+  CandidateScreen screen({{"ball", trainedVerifier(), 0.5}});
+  cv::RNG rng(5);
+  const test::VerifierFrame f = test::drawVerifierFrame(rng);
+  for (const ColorTable& table : {ColorTable({blueRange(), yellowRange()}), ColorTable({yellowRange(), blueRange()}),
+                                  ColorTable({blueRange()})}) {
+    ColorTracker tracker;
+    std::vector<TrackedBlob> blobs;
+    tracker.process(f.bgr, PixelFormat::BGR8, table, 0.0, &blobs);
+    const int ball_label = table.indexOf("ball") + 1;
+    const ScreeningCounts counts = screen.apply(f.bgr, table, &blobs);
+    int ball_blobs = 0;
+    for (const TrackedBlob& b : blobs) {
+      ball_blobs += b.region.label == ball_label;
+      EXPECT_EQ(std::isnan(b.score), b.region.label != ball_label) << "only the ball class is scored";
+    }
+    EXPECT_EQ(counts.candidates > 0, ball_label > 0);
+    EXPECT_LE(ball_blobs, 1) << "the bar and the patch are dropped, in either order of the classes";
+  }
+}
+
 TEST(CandidateScreen, ScoresTheLargestCandidatesUpToTheCapAndDropsTheRestUnjudged) {
   const ColorTable table({yellowRange()});
   cv::Mat frame(120, 200, CV_8UC3, cv::Scalar(60, 120, 70));
@@ -115,7 +138,7 @@ TEST(CandidateScreen, ScoresTheLargestCandidatesUpToTheCapAndDropsTheRestUnjudge
 
 TEST(CandidateScreen, ColoursFileNamesTheVerifierAndMayTakeItsRangeFromIt) {
   const std::string dir = std::filesystem::path(testing::TempDir() + "/rle_vision_screen").lexically_normal().string();
-  std::system(("mkdir -p " + dir + "/models").c_str());
+  std::filesystem::create_directories(dir + "/models");
   BlobVerifier copy = BlobVerifier::load([&] {
     trainedVerifier()->save(dir + "/models/ball.yml");
     return dir + "/models/ball.yml";
@@ -124,7 +147,8 @@ TEST(CandidateScreen, ColoursFileNamesTheVerifierAndMayTakeItsRangeFromIt) {
                                          "  - name: goal\n    min: [0, 170, 0]\n    max: [255, 255, 110]\n";
   const std::vector<ColorClass> classes = loadColorClasses(dir + "/colors.yaml");
   ASSERT_EQ(classes.size(), 2u);
-  EXPECT_EQ(classes[0].verifier_file, dir + "/models/ball.yml");
+  EXPECT_EQ(classes[0].verifier_file, "models/ball.yml") << "as written";
+  EXPECT_EQ(classes[0].verifier_path, dir + "/models/ball.yml") << "resolved against the colours file's folder";
   EXPECT_DOUBLE_EQ(classes[0].min_score, 0.7);
   EXPECT_EQ(classes[0].min, yellowRange().min) << "the range the verifier was trained on";
   EXPECT_EQ(classes[0].max, yellowRange().max);
@@ -133,19 +157,24 @@ TEST(CandidateScreen, ColoursFileNamesTheVerifierAndMayTakeItsRangeFromIt) {
   ASSERT_EQ(verifiers.size(), 1u);
   EXPECT_EQ(verifiers[0].class_name, "ball");
   EXPECT_DOUBLE_EQ(verifiers[0].min_score, 0.7);
-  // The written colours file reads back the same.
+  // The written colours file reads back the same, the path still as written.
   std::ofstream(dir + "/written.yaml") << colorClassesToYaml(classes);
+  EXPECT_EQ(colorClassesToYaml(classes).find(dir), std::string::npos) << "no path of this machine is written";
   const std::vector<ColorClass> again = loadColorClasses(dir + "/written.yaml");
-  EXPECT_EQ(again[0].verifier_file, classes[0].verifier_file);
+  EXPECT_EQ(again[0].verifier_file, "models/ball.yml");
+  EXPECT_EQ(again[0].verifier_path, classes[0].verifier_path);
   EXPECT_DOUBLE_EQ(again[0].min_score, 0.7);
   EXPECT_EQ(again[0].min, classes[0].min);
-  // Refused with the reason: min_score alone, out of 0..1, a missing model, half a range.
+  // Refused with the reason: min_score alone, out of 0..1, a missing model, half a range, an
+  // empty file name.
   const std::string bad[] = {"classes:\n  - name: b\n    min: [0,0,0]\n    max: [9,9,9]\n    min_score: 0.5\n",
                              "classes:\n  - name: b\n    verifier_file: models/ball.yml\n    min_score: 1.5\n",
                              "classes:\n  - name: b\n    verifier_file: models/none.yml\n",
-                             "classes:\n  - name: b\n    verifier_file: models/ball.yml\n    min: [0,0,0]\n"};
-  const std::string reasons[] = {"no verifier_file", "min_score", "takes its range from its verifier", "both 'min' and 'max'"};
-  for (int i = 0; i < 4; ++i) {
+                             "classes:\n  - name: b\n    verifier_file: models/ball.yml\n    min: [0,0,0]\n",
+                             "classes:\n  - name: b\n    verifier_file: \"\"\n"};
+  const std::string reasons[] = {"no verifier_file", "min_score", "takes its range from its verifier", "both 'min' and 'max'",
+                                 "verifier_file is empty"};
+  for (int i = 0; i < 5; ++i) {
     std::ofstream(dir + "/bad.yaml") << bad[i];
     try {
       loadColorClasses(dir + "/bad.yaml");
