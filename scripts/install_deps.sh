@@ -60,7 +60,7 @@ debian_packages=(
   librosbag-dev python3-rosbag python3-std-srvs ros-message-generation ros-message-runtime
   libdiagnostic-updater-dev python3-diagnostic-msgs libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libbenchmark-dev libgtest-dev
-  rviz xvfb x11-apps
+  rviz xvfb x11-apps xdotool
 )
 
 missing=()

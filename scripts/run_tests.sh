@@ -17,6 +17,8 @@ fi
 if ! catkin_make run_tests -j1; then
   extra+=("catkin_make run_tests exited with an error (see above)")
 fi
+# The calibration window, driven with the mouse and keys under a virtual X server.
+JUNIT_DIR="$results/checks" "$ROOT/test/gui/test_calibrate_gui.sh" || true
 # The core built on its own with plain CMake (no ROS in it), and the package's install space.
 JUNIT_DIR="$results/checks" "$ROOT/scripts/test_core_plain.sh" || true
 JUNIT_DIR="$results/checks" "$ROOT/scripts/test_install_space.sh" || true

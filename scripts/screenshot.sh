@@ -8,3 +8,4 @@ mkdir -p "$ROOT/docs"
 export RLE_VISION_SCREENSHOT="$ROOT/docs/rviz_screenshot.png"
 rostest rle_vision rviz_screenshot.test
 echo "[screenshot] wrote $RLE_VISION_SCREENSHOT"
+scripts/calibrate_screenshot.sh

@@ -3,6 +3,7 @@
 //
 //   rle_vision_calibrate --name ball IMAGE --box x0,y0,x1,y1 [--box ...] [IMAGE --box ...]...
 //   rle_vision_calibrate --name ball --label-class 0 FOLDER_OR_IMAGE...   (YOLO labels)
+//   rle_vision_calibrate --gui --name ball IMAGE...   (drag the boxes in a window)
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -16,6 +17,8 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "calibrate_gui/calibration_window.h"
+#include "rle_vision/learning/calibration_session.h"
 #include "rle_vision/learning/color_calibration.h"
 #include "rle_vision/io/color_config.h"
 #include "rle_vision/io/yolo_labels.h"
@@ -27,6 +30,10 @@ using namespace rle_vision;
 const char* kUsage =
     "usage: rle_vision_calibrate --name NAME [options] IMAGE --box x0,y0,x1,y1 [--box ...] [IMAGE --box ...]...\n"
     "       rle_vision_calibrate --name NAME --label-class N [options] FOLDER_OR_IMAGE...\n"
+    "       rle_vision_calibrate --gui --name NAME [options] IMAGE... (boxes optional: drag them in the window)\n"
+    "  --gui              a window: drag boxes around the object over the images, watch the class's mask\n"
+    "                     (keys on screen: u undo, n/b next/back image, c colour space, s save, q quit);\n"
+    "                     needs a display (DISPLAY; 'xvfb-run -a' for a virtual one)\n"
     "  --box x0,y0,x1,y1  a box around the object in the image named before it (pixels; x1,y1 one past\n"
     "                     the last column and row); an image without boxes shows colours the class must avoid\n"
     "  --label-class N    boxes of class N from the YOLO label file beside each image (IMAGE.txt:\n"
@@ -45,12 +52,11 @@ const char* kUsage =
 struct Arguments {
   std::string name, output, cmvision;
   int label_class = -1;
+  bool gui = false;
   CalibrationOptions options;
   std::vector<std::string> images;
   std::vector<std::vector<cv::Rect>> boxes;  // per image, from --box
 };
-
-const char* kNameCharacters = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-";
 
 struct UsageError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
@@ -107,6 +113,8 @@ Arguments parseArguments(int argc, char** argv) {
       parseOption(arg, argv[++i], &args);
     } else if (arg == "--no-background-gate") {
       args.options.exclude_background = false;
+    } else if (arg == "--gui") {
+      args.gui = true;
     } else if (!arg.empty() && arg[0] == '-') {
       throw UsageError("unknown option " + arg);
     } else {
@@ -114,7 +122,7 @@ Arguments parseArguments(int argc, char** argv) {
       args.boxes.emplace_back();
     }
   }
-  if (args.name.empty() || args.name.find_first_not_of(kNameCharacters) != std::string::npos) {
+  if (!isPortableClassName(args.name)) {
     throw UsageError("--name NAME is required: letters, digits, '_' and '-' (it goes into colors.yaml and colors.txt)");
   }
   if (args.images.empty()) throw UsageError("no images given");
@@ -141,7 +149,7 @@ CalibrationExample readExample(const std::string& path, std::vector<cv::Rect> bo
   return e;
 }
 
-std::vector<CalibrationExample> readExamples(const Arguments& args) {
+std::vector<CalibrationExample> readExamples(const Arguments& args, bool need_boxes) {
   std::vector<CalibrationExample> examples;
   for (size_t i = 0; i < args.images.size(); ++i) {
     if (args.label_class >= 0 && isDirectory(args.images[i])) {
@@ -154,31 +162,8 @@ std::vector<CalibrationExample> readExamples(const Arguments& args) {
   }
   size_t boxes = 0;
   for (const CalibrationExample& e : examples) boxes += e.boxes.size();
-  if (boxes == 0) throw std::invalid_argument("no boxes: give --box after an image, or --label-class with YOLO labels");
+  if (need_boxes && boxes == 0) throw std::invalid_argument("no boxes: give --box after an image, or --label-class with YOLO labels");
   return examples;
-}
-
-// The class set to write: FILE's classes with this one replacing its namesake, or just it.
-std::vector<ColorClass> mergedClasses(const std::string& path, const ColorClass& c) {
-  std::vector<ColorClass> classes;
-  if (!path.empty() && std::ifstream(path).good()) classes = loadColorClasses(path);
-  auto same = std::find_if(classes.begin(), classes.end(), [&](const ColorClass& k) { return k.name == c.name; });
-  if (same != classes.end()) {
-    // The new range replaces the old; a verifier the class had stays with it.
-    ColorClass replaced = c;
-    replaced.verifier_file = same->verifier_file;
-    replaced.verifier_path = same->verifier_path;
-    replaced.min_score = same->min_score;
-    *same = replaced;
-  } else {
-    classes.push_back(c);
-  }
-  return classes;
-}
-
-void writeFile(const std::string& path, const std::string& text) {
-  std::ofstream out(path);
-  if (!(out << text)) throw std::invalid_argument("cannot write " + path);
 }
 
 void report(const CalibrationResult& r) {
@@ -193,6 +178,58 @@ void report(const CalibrationResult& r) {
                100 * r.object_recall, r.other_pixels_per_image);
 }
 
+void printClass(const ColorClass& c) {
+  std::cout << colorClassesToYaml({c});
+  if (c.space == ColorSpace::YUV) std::cout << "\n" << cmvisionColorsText({c});
+}
+
+// What the save key did, for the window's notice line.
+std::string save(const CalibrationSession& session, const Arguments& args) {
+  if (!session.result()) return "nothing to save yet: drag a box around the object";
+  const ColorClass& c = session.result()->color_class;
+  if (args.output.empty() && args.cmvision.empty()) {
+    printClass(c);
+    return "printed to the terminal (--output FILE and --cmvision FILE write files)";
+  }
+  try {
+    saveColorClassInto(c, args.output, args.cmvision);
+  } catch (const std::exception& e) {
+    return std::string("not saved: ") + e.what();
+  }
+  return "saved into " + args.output + (args.output.empty() || args.cmvision.empty() ? "" : " and ") + args.cmvision;
+}
+
+// The window over the images; on quit, the last class is printed as the batch mode does.
+int runGui(const Arguments& args) {
+  const std::string problem = displayProblem();
+  if (!problem.empty()) {
+    std::cerr << "rle_vision_calibrate: " << problem << "\n";
+    return 2;
+  }
+  CalibrationSession session(args.name, args.options);
+  for (const CalibrationExample& e : readExamples(args, false)) {
+    const int index = session.addFrame(e.bgr, e.name);
+    for (const cv::Rect& box : e.boxes) session.addBox(index, box);
+  }
+  CalibrationWindow window(&session, /*live=*/false);
+  for (CalibrationCommand command = CalibrationCommand::kNone; command != CalibrationCommand::kQuit;) {
+    command = window.step(30);
+    if (command == CalibrationCommand::kSave) {
+      const std::string notice = save(session, args);
+      std::cerr << "rle_vision_calibrate: " << notice << "\n";
+      window.setNotice(notice);
+    }
+  }
+  if (!session.result()) {
+    std::cerr << "rle_vision_calibrate: no class (" << (session.lastError().empty() ? "no boxes" : session.lastError())
+              << ")\n";
+    return 0;
+  }
+  report(*session.result());
+  printClass(session.result()->color_class);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -204,17 +241,11 @@ int main(int argc, char** argv) {
   }
   try {
     const Arguments args = parseArguments(argc, argv);
-    const CalibrationResult result = calibrateColorClass(readExamples(args), args.name, args.options);
+    if (args.gui) return runGui(args);
+    const CalibrationResult result = calibrateColorClass(readExamples(args, true), args.name, args.options);
     report(result);
-    std::cout << colorClassesToYaml({result.color_class});
-    if (args.options.space == ColorSpace::YUV) std::cout << "\n" << cmvisionColorsText({result.color_class});
-    // Both texts first, so that a file that cannot take the class (an HSV class in a
-    // colors.txt) leaves both files as they were.
-    const std::string yaml = args.output.empty() ? "" : colorClassesToYaml(mergedClasses(args.output, result.color_class));
-    const std::string cmvision =
-        args.cmvision.empty() ? "" : cmvisionColorsText(mergedClasses(args.cmvision, result.color_class));
-    if (!args.output.empty()) writeFile(args.output, yaml);
-    if (!args.cmvision.empty()) writeFile(args.cmvision, cmvision);
+    printClass(result.color_class);
+    saveColorClassInto(result.color_class, args.output, args.cmvision);
   } catch (const UsageError& e) {
     std::cerr << "rle_vision_calibrate: " << e.what() << "\n" << kUsage;
     return 2;

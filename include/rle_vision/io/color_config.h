@@ -19,4 +19,11 @@ std::vector<ColorClass> parseCmvisionColors(const std::string& text, const std::
 // Writes classes as colors.yaml text (loadColorClasses reads it back unchanged).
 std::string colorClassesToYaml(const std::vector<ColorClass>& classes);
 
+// Saves a calibrated class into a colors.yaml and/or a CMVision colors.txt (an empty path:
+// not that one): a class of the same name is replaced (keeping its verifier), the others are
+// kept (comments are not), a missing file is created. Both texts are made before either file
+// is written, so a class one file cannot take (HSV into colors.txt) leaves both as they were.
+// Throws ConfigError for a broken existing file, std::invalid_argument otherwise.
+void saveColorClassInto(const ColorClass& c, const std::string& yaml_path, const std::string& cmvision_path);
+
 }  // namespace rle_vision

@@ -1,10 +1,12 @@
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <sstream>
 
 #include "rle_vision/io/color_config.h"
 #include "io/yaml_reader.h"
+#include "rle_vision/learning/calibration_session.h"
 #include "rle_vision/verify/blob_verifier.h"
 
 namespace rle_vision {
@@ -187,6 +189,28 @@ std::string colorClassesToYaml(const std::vector<ColorClass>& classes) {
     if (!c.verifier_file.empty()) out << "    verifier_file: " << c.verifier_file << "\n    min_score: " << c.min_score << "\n";
   }
   return out.str();
+}
+
+namespace {
+
+std::vector<ColorClass> fileClassesWith(const std::string& path, const ColorClass& c) {
+  std::vector<ColorClass> classes;
+  if (std::ifstream(path).good()) classes = loadColorClasses(path);
+  return mergeColorClass(std::move(classes), c);
+}
+
+void writeText(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  if (!(out << text)) throw std::invalid_argument("cannot write " + path);
+}
+
+}  // namespace
+
+void saveColorClassInto(const ColorClass& c, const std::string& yaml_path, const std::string& cmvision_path) {
+  const std::string yaml = yaml_path.empty() ? "" : colorClassesToYaml(fileClassesWith(yaml_path, c));
+  const std::string cmvision = cmvision_path.empty() ? "" : cmvisionColorsText(fileClassesWith(cmvision_path, c));
+  if (!yaml_path.empty()) writeText(yaml_path, yaml);
+  if (!cmvision_path.empty()) writeText(cmvision_path, cmvision);
 }
 
 }  // namespace rle_vision

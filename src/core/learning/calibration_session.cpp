@@ -1,0 +1,118 @@
+#include "rle_vision/learning/calibration_session.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <utility>
+
+#include <opencv2/imgproc.hpp>
+
+#include "rle_vision/color/color_convert.h"
+
+namespace rle_vision {
+
+bool isPortableClassName(const std::string& name) {
+  static const char* kAllowed = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-";
+  return !name.empty() && name.find_first_not_of(kAllowed) == std::string::npos;
+}
+
+std::vector<ColorClass> mergeColorClass(std::vector<ColorClass> classes, const ColorClass& c) {
+  auto same = std::find_if(classes.begin(), classes.end(), [&](const ColorClass& k) { return k.name == c.name; });
+  if (same == classes.end()) {
+    classes.push_back(c);
+    return classes;
+  }
+  // The new range replaces the old; a verifier the class had stays with it.
+  ColorClass replaced = c;
+  replaced.verifier_file = same->verifier_file;
+  replaced.verifier_path = same->verifier_path;
+  replaced.min_score = same->min_score;
+  *same = replaced;
+  return classes;
+}
+
+CalibrationSession::CalibrationSession(std::string class_name, CalibrationOptions options)
+    : class_name_(std::move(class_name)), options_(options) {
+  if (!isPortableClassName(class_name_)) {
+    throw std::invalid_argument("class name '" + class_name_ +
+                                "': use letters, digits, '_' and '-' (it goes into colors.yaml and colors.txt)");
+  }
+}
+
+int CalibrationSession::addFrame(const cv::Mat& bgr, const std::string& name) {
+  if (bgr.empty() || bgr.type() != CV_8UC3) {
+    throw std::invalid_argument(name + ": calibration needs a non-empty 8-bit, 3-channel BGR image");
+  }
+  CalibrationExample e;
+  e.name = name;
+  e.bgr = bgr;
+  examples_.push_back(std::move(e));
+  return frameCount() - 1;
+}
+
+bool CalibrationSession::addBox(int frame_index, const cv::Rect& box) {
+  CalibrationExample& e = examples_.at(frame_index);
+  const cv::Rect clipped = box & cv::Rect(0, 0, e.bgr.cols, e.bgr.rows);
+  if (clipped.width < 2 || clipped.height < 2) return false;
+  e.boxes.push_back(clipped);
+  history_.push_back(frame_index);
+  remeasure();
+  return true;
+}
+
+bool CalibrationSession::undo() {
+  if (history_.empty()) return false;
+  examples_[history_.back()].boxes.pop_back();
+  history_.pop_back();
+  remeasure();
+  return true;
+}
+
+void CalibrationSession::setSpace(ColorSpace space) {
+  if (space == options_.space) return;
+  options_.space = space;
+  remeasure();
+}
+
+void CalibrationSession::cycleSpace() {
+  setSpace(static_cast<ColorSpace>((static_cast<int>(options_.space) + 1) % kNumColorSpaces));
+}
+
+void CalibrationSession::remeasure() {
+  result_.reset();
+  error_.clear();
+  if (history_.empty()) return;
+  try {
+    result_ = calibrateColorClass(examples_, class_name_, options_);
+  } catch (const std::invalid_argument& e) {
+    error_ = e.what();
+  }
+}
+
+cv::Mat CalibrationSession::classMask(const cv::Mat& bgr) const {
+  cv::Mat mask = cv::Mat::zeros(bgr.size(), CV_8UC1);
+  if (!result_ || bgr.empty()) return mask;
+  const ColorClass& c = result_->color_class;
+  const cv::Mat converted = convertBgrImage(bgr, c.space);
+  for (int y = 0; y < converted.rows; ++y) {
+    const cv::Vec3b* row = converted.ptr<cv::Vec3b>(y);
+    uint8_t* out = mask.ptr<uint8_t>(y);
+    for (int x = 0; x < converted.cols; ++x) {
+      out[x] = c.contains(Channels{{row[x][0], row[x][1], row[x][2]}}) ? 255 : 0;
+    }
+  }
+  return mask;
+}
+
+MaskCounts CalibrationSession::countMask(const cv::Mat& mask, const std::vector<cv::Rect>& boxes) {
+  cv::Mat in_boxes = cv::Mat::zeros(mask.size(), CV_8UC1);
+  for (const cv::Rect& b : boxes) in_boxes(b & cv::Rect(0, 0, mask.cols, mask.rows)).setTo(255);
+  MaskCounts counts;
+  counts.box_area_px = cv::countNonZero(in_boxes);
+  cv::Mat inside;
+  cv::bitwise_and(mask, in_boxes, inside);
+  counts.in_boxes_px = cv::countNonZero(inside);
+  counts.outside_px = cv::countNonZero(mask) - counts.in_boxes_px;
+  return counts;
+}
+
+}  // namespace rle_vision
