@@ -38,6 +38,7 @@
 #include "rle_vision/color/color_table.h"
 #include "rle_vision/field/field_detector.h"
 #include "rle_vision/landmark/landmark_detector.h"
+#include "rle_vision/color/color_convert.h"
 #include "rle_vision/pipeline/overlay.h"
 #include "rle_vision/common/startup_wait.h"
 
@@ -386,7 +387,7 @@ cv::Mat LandmarkNodelet::colourImage(const sensor_msgs::Image& edges_msg, const 
   std::string error;
   if (!viewImage(*colour, &format, &view, &error) || view.size() != size) return cv::Mat();
   if (format == PixelFormat::BGR8) return view;
-  bgr_ = toDisplayBgr(view, format);
+  bgr_ = frameToBgr(view, format);  // colours learned as the tracker reads them (4:2:2: the camera's YUV)
   return bgr_;
 }
 

@@ -19,7 +19,7 @@
 #include "error_throttle.h"
 #include "image_conversions.h"
 #include "rle_vision/io/color_config.h"
-#include "rle_vision/pipeline/overlay.h"
+#include "rle_vision/color/color_convert.h"
 
 namespace rle_vision {
 
@@ -41,6 +41,9 @@ CalibrateGuiSettings readSettings(const ros::NodeHandle& pnh) {
   pnh.param("background_gate", background_gate, true);
   if (!parseColorSpace(space, &s.options.space)) throw std::invalid_argument("~space: unknown colour space '" + space + "' (YUV, RGB or HSV)");
   if (min_area_px < 1) throw std::invalid_argument("~min_area_px must be >= 1");
+  if (!s.cmvision.empty() && s.options.space != ColorSpace::YUV) {
+    throw std::invalid_argument("~cmvision: CMVision's colors.txt holds YUV classes only; use _space:=YUV or leave it out");
+  }
   s.options.min_area_px = static_cast<uint32_t>(min_area_px);
   s.options.exclude_background = background_gate;
   return s;
@@ -79,8 +82,8 @@ class CalibrateGui {
                          [](const std::string& e) { ROS_ERROR("%s", e.c_str()); })) {
       return;
     }
-    cv::Mat bgr = toDisplayBgr(frame.image, frame.format);
-    if (bgr.data == frame.image.data) bgr = bgr.clone();  // the message's buffer goes with it
+    // A copy (the message's buffer goes with it), in the YUV the tracker reads.
+    cv::Mat bgr = frameToBgr(frame.image, frame.format);
     std::lock_guard<std::mutex> lock(mutex_);
     latest_ = bgr;
   }
@@ -97,17 +100,12 @@ class CalibrateGui {
   }
 
   std::string save() {
-    if (!session_.result()) return "nothing to save yet: drag a box around the object";
     if (settings_.output.empty() && settings_.cmvision.empty()) {
       return "nowhere to save: start it with _output:=colors.yaml and/or _cmvision:=colors.txt";
     }
-    try {
-      saveColorClassInto(session_.result()->color_class, settings_.output, settings_.cmvision);
-    } catch (const std::exception& e) {
-      return std::string("not saved: ") + e.what();
-    }
-    ROS_INFO("saved class '%s' into %s %s", settings_.name.c_str(), settings_.output.c_str(), settings_.cmvision.c_str());
-    return "saved";
+    const std::string notice = saveSessionClass(session_, settings_.output, settings_.cmvision);
+    ROS_INFO("calibrate_gui: %s", notice.c_str());
+    return notice;
   }
 
   std::string send() {

@@ -185,18 +185,11 @@ void printClass(const ColorClass& c) {
 
 // What the save key did, for the window's notice line.
 std::string save(const CalibrationSession& session, const Arguments& args) {
-  if (!session.result()) return "nothing to save yet: drag a box around the object";
-  const ColorClass& c = session.result()->color_class;
-  if (args.output.empty() && args.cmvision.empty()) {
-    printClass(c);
+  if (session.result() && args.output.empty() && args.cmvision.empty()) {
+    printClass(session.result()->color_class);
     return "printed to the terminal (--output FILE and --cmvision FILE write files)";
   }
-  try {
-    saveColorClassInto(c, args.output, args.cmvision);
-  } catch (const std::exception& e) {
-    return std::string("not saved: ") + e.what();
-  }
-  return "saved into " + args.output + (args.output.empty() || args.cmvision.empty() ? "" : " and ") + args.cmvision;
+  return saveSessionClass(session, args.output, args.cmvision);
 }
 
 // The window over the images; on quit, the last class is printed as the batch mode does.
@@ -207,10 +200,7 @@ int runGui(const Arguments& args) {
     return 2;
   }
   CalibrationSession session(args.name, args.options);
-  for (const CalibrationExample& e : readExamples(args, false)) {
-    const int index = session.addFrame(e.bgr, e.name);
-    for (const cv::Rect& box : e.boxes) session.addBox(index, box);
-  }
+  session.addExamples(readExamples(args, false));
   CalibrationWindow window(&session, /*live=*/false);
   for (CalibrationCommand command = CalibrationCommand::kNone; command != CalibrationCommand::kQuit;) {
     command = window.step(30);

@@ -75,14 +75,7 @@ int check(const std::string& dir, const std::string& colors, const std::string& 
                  name.c_str(), dir.c_str());
     return 1;
   }
-  const cv::Mat converted = convertBgrImage(bgr, c->space);
-  cv::Mat in_class(bgr.size(), CV_8UC1);
-  for (int y = 0; y < bgr.rows; ++y) {
-    for (int x = 0; x < bgr.cols; ++x) {
-      const cv::Vec3b p = converted.at<cv::Vec3b>(y, x);
-      in_class.at<uint8_t>(y, x) = c->contains(Channels{{p[0], p[1], p[2]}}) ? 255 : 0;
-    }
-  }
+  const cv::Mat in_class = colorClassMask(*c, bgr);
   const cv::Mat object = labels == label;
   // Another object of the same paint is rightly in the class: "elsewhere" is off all of them.
   cv::Mat same_paint = object.clone();

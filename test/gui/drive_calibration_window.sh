@@ -18,6 +18,7 @@ wait_for_width "$window" "$(python3 -c 'import sys, cv2; print(cv2.imread(sys.ar
   { kill "$tool"; exit 1; }
 drag_grown_box "$window" "$left" "$top" "$right" "$bottom"
 xdotool key --window "$window" s
+wait_until test -s colors.yaml || { kill "$tool"; exit 1; }
 if [[ -n "$screenshot" ]]; then
   sleep 1  # the saved notice drawn
   xwd -root -silent >"$screenshot"

@@ -15,6 +15,12 @@ window=$(find_window "rle_vision calibrate") || { kill "$tool"; exit 1; }
 wait_for_width "$window" "$(timeout 30 rostopic echo -n1 /camera/camera_info/width | head -1)" ||
   { kill "$tool"; exit 1; }
 drag_grown_box "$window" "$left" "$top" "$right" "$bottom"
-# X delivers the events in order: the box is in before s, s done before t, t before q.
-xdotool key --window "$window" s key --window "$window" t key --window "$window" q
+xdotool key --window "$window" s
+wait_until test -s "$dir/live_colors.yaml" || { kill "$tool"; exit 1; }
+xdotool key --window "$window" t
+tracker_has_target() {
+  timeout 5 rostopic echo -n1 /camera/tracker/active_color_ranges 2>/dev/null | grep -q 'name: "target"'
+}
+wait_until tracker_has_target || { kill "$tool"; exit 1; }
+xdotool key --window "$window" q
 wait_for_exit "$tool"

@@ -37,6 +37,17 @@ drag_grown_box() {
     mousemove --window "$window" $((right + grow_x)) $((bottom + grow_y)) mouseup 1
 }
 
+# Waits (10 s at most) until COMMAND... succeeds: what a key did, before the next key goes (highgui
+# reads one key per wait, so keys sent together can overwrite each other). wait_until COMMAND...
+wait_until() {
+  for _ in $(seq 100); do
+    "$@" && return 0
+    sleep 0.1
+  done
+  echo "waited 10 s for: $*" >&2
+  return 1
+}
+
 # Waits (10 s at most) for PID to exit and returns its status: wait_for_exit PID
 wait_for_exit() {
   for _ in $(seq 100); do

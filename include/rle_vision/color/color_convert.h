@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 
 #include "rle_vision/color/color_class.h"
+#include "rle_vision/color/pixel_format.h"
 
 namespace rle_vision {
 
@@ -39,6 +40,20 @@ cv::Mat convertBgrImage(const cv::Mat& bgr, ColorSpace space);
 // BGR (CV_8UC3, even width) to UYVY (CV_8UC2, ROS "yuv422") with the YUV above; each pixel
 // pair shares the rounded mean of its two chroma values.
 cv::Mat bgrToUyvy(const cv::Mat& bgr);
+
+// A camera's 4:2:2 frame (CV_8UC2; UYVY when is_uyvy, else YUYV) as BGR whose
+// convertBgrImage(..., YUV) is the camera's own YUV (within rounding): the YUV the tracker
+// classifies on such frames. OpenCV's COLOR_YUV2BGR_UYVY reads limited-range video YUV and
+// would shift a range measured on its output.
+cv::Mat yuv422ToBgr(const cv::Mat& packed, bool is_uyvy);
+
+// A camera frame as BGR (a new buffer) whose convertBgrImage(..., YUV) is the YUV the tracker
+// classifies: where colours are measured for the tracker (learning, calibration). 4:2:2 frames
+// through yuv422ToBgr, the others with OpenCV's conversions.
+cv::Mat frameToBgr(const cv::Mat& image, PixelFormat format);
+
+// The pixels of a CV_8UC3 BGR image that class `c` takes (CV_8UC1, 255 in the class).
+cv::Mat colorClassMask(const ColorClass& c, const cv::Mat& bgr);
 
 // Row helpers used by the classifier: split `width` interleaved pixels into planes.
 // `src_is_rgb` tells whether the source is R,G,B (true) or B,G,R (false) ordered.

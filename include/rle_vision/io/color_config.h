@@ -19,6 +19,15 @@ std::vector<ColorClass> parseCmvisionColors(const std::string& text, const std::
 // Writes classes as colors.yaml text (loadColorClasses reads it back unchanged).
 std::string colorClassesToYaml(const std::vector<ColorClass>& classes);
 
+// CMVision's colors.txt ([Colors] and [Thresholds], no comments inside the sections: its
+// parser ends a section at a comment) for YUV classes. Throws std::invalid_argument for
+// another space.
+std::string cmvisionColorsText(const std::vector<ColorClass>& classes);
+
+// `classes` with `c` in place of the class of the same name (which keeps its verifier), or
+// with `c` appended (last: lowest priority): what saving a calibrated class into a file does.
+std::vector<ColorClass> mergeColorClass(std::vector<ColorClass> classes, const ColorClass& c);
+
 // Saves a calibrated class into a colors.yaml and/or a CMVision colors.txt (an empty path:
 // not that one): a class of the same name is replaced (keeping its verifier), the others are
 // kept (comments are not), a missing file is created. Both texts are made before either file

@@ -31,6 +31,12 @@ class CalibrationSession {
   // A frame to box on (BGR, CV_8UC3, not empty; throws std::invalid_argument otherwise).
   // Frames without boxes still count: their pixels are colours the class must avoid.
   int addFrame(const cv::Mat& bgr, const std::string& name);
+  // Frames with boxes given up front (--box, --label-class), the class measured once. Throws
+  // std::invalid_argument, naming the frame, for an unusable image or a box outside it.
+  void addExamples(const std::vector<CalibrationExample>& examples);
+  // A box on a frame not kept yet (a live camera's): the frame is kept only when the box is
+  // (see addBox). Its index, or -1 for a click.
+  int addFrameWithBox(const cv::Mat& bgr, const std::string& name, const cv::Rect& box);
   int frameCount() const { return static_cast<int>(examples_.size()); }
   const CalibrationExample& frame(int index) const { return examples_.at(index); }
 
@@ -51,6 +57,9 @@ class CalibrationSession {
   const std::optional<CalibrationResult>& result() const { return result_; }
   const std::string& lastError() const { return error_; }
 
+  // Changes whenever the class may have: a mask drawn with an older revision is stale.
+  int revision() const { return revision_; }
+
   // The current class's pixels in `bgr` (CV_8UC1, 255 = in the class); all zero without one.
   cv::Mat classMask(const cv::Mat& bgr) const;
   // The counts of `mask` over the frame's boxes (`boxes` may be empty: all pixels outside).
@@ -65,13 +74,10 @@ class CalibrationSession {
   std::vector<int> history_;  // the frame of each box, in the order added (for undo)
   std::optional<CalibrationResult> result_;
   std::string error_;
+  int revision_ = 0;
 };
 
 // True for a name colors.yaml and CMVision's colors.txt both take: letters, digits, '_', '-'.
 bool isPortableClassName(const std::string& name);
-
-// `classes` with `c` in place of the class of the same name (which keeps its verifier), or
-// with `c` appended: what saving a calibrated class into an existing colours file does.
-std::vector<ColorClass> mergeColorClass(std::vector<ColorClass> classes, const ColorClass& c);
 
 }  // namespace rle_vision

@@ -54,15 +54,14 @@ struct CalibrationResult {
 std::vector<Channels> objectPixelsInBox(const cv::Mat& image_in_space, const cv::Rect& box,
                                         const CalibrationOptions& options);
 
+// Throws std::invalid_argument, naming the example, for an empty or non-BGR image, an empty
+// box, or a box outside its image.
+void checkCalibrationExample(const CalibrationExample& e);
+
 // The class named `name` from `examples`. Throws std::invalid_argument with the example's
 // name and the reason for an empty image, a box outside its image or an empty box, and when
 // no box holds object pixels.
 CalibrationResult calibrateColorClass(const std::vector<CalibrationExample>& examples, const std::string& name,
                                       const CalibrationOptions& options = CalibrationOptions());
-
-// CMVision's colors.txt ([Colors] and [Thresholds], no comments inside the sections: its
-// parser ends a section at a comment) for YUV classes. Throws std::invalid_argument for
-// another space.
-std::string cmvisionColorsText(const std::vector<ColorClass>& classes);
 
 }  // namespace rle_vision

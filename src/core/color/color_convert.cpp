@@ -1,6 +1,7 @@
 #include "rle_vision/color/color_convert.h"
 
 #include <stdexcept>
+#include <vector>
 
 #include <opencv2/imgproc.hpp>
 
@@ -107,6 +108,47 @@ cv::Mat bgrToUyvy(const cv::Mat& bgr) {
     }
   }
   return uyvy;
+}
+
+cv::Mat yuv422ToBgr(const cv::Mat& packed, bool is_uyvy) {
+  if (packed.type() != CV_8UC2 || packed.cols % 2 != 0) {
+    throw std::invalid_argument("yuv422ToBgr needs a CV_8UC2 4:2:2 image of even width");
+  }
+  cv::Mat yuv(packed.size(), CV_8UC3);
+  std::vector<uint8_t> y(packed.cols), u(packed.cols), v(packed.cols);
+  for (int row = 0; row < packed.rows; ++row) {
+    yuv422RowToPlanes(packed.ptr<uint8_t>(row), packed.cols, is_uyvy, y.data(), u.data(), v.data());
+    cv::Vec3b* out = yuv.ptr<cv::Vec3b>(row);
+    for (int x = 0; x < packed.cols; ++x) out[x] = cv::Vec3b(y[x], u[x], v[x]);
+  }
+  cv::Mat bgr;
+  cv::cvtColor(yuv, bgr, cv::COLOR_YUV2BGR);  // the inverse of the COLOR_BGR2YUV above
+  return bgr;
+}
+
+cv::Mat frameToBgr(const cv::Mat& image, PixelFormat format) {
+  cv::Mat bgr;
+  switch (format) {
+    case PixelFormat::BGR8: bgr = image.clone(); break;
+    case PixelFormat::RGB8: cv::cvtColor(image, bgr, cv::COLOR_RGB2BGR); break;
+    case PixelFormat::MONO8: cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR); break;
+    case PixelFormat::UYVY: bgr = yuv422ToBgr(image, true); break;
+    case PixelFormat::YUYV: bgr = yuv422ToBgr(image, false); break;
+  }
+  return bgr;
+}
+
+cv::Mat colorClassMask(const ColorClass& c, const cv::Mat& bgr) {
+  const cv::Mat converted = convertBgrImage(bgr, c.space);
+  cv::Mat mask(bgr.size(), CV_8UC1);
+  for (int y = 0; y < converted.rows; ++y) {
+    const cv::Vec3b* row = converted.ptr<cv::Vec3b>(y);
+    uint8_t* out = mask.ptr<uint8_t>(y);
+    for (int x = 0; x < converted.cols; ++x) {
+      out[x] = c.contains(Channels{{row[x][0], row[x][1], row[x][2]}}) ? 255 : 0;
+    }
+  }
+  return mask;
 }
 
 }  // namespace rle_vision

@@ -6,7 +6,6 @@
 
 #include "rle_vision/io/color_config.h"
 #include "io/yaml_reader.h"
-#include "rle_vision/learning/calibration_session.h"
 #include "rle_vision/verify/blob_verifier.h"
 
 namespace rle_vision {
@@ -191,6 +190,23 @@ std::string colorClassesToYaml(const std::vector<ColorClass>& classes) {
   return out.str();
 }
 
+std::string cmvisionColorsText(const std::vector<ColorClass>& classes) {
+  std::ostringstream colors, thresholds;
+  colors << "[Colors]\n";
+  thresholds << "[Thresholds]\n";
+  for (const ColorClass& c : classes) {
+    if (c.space != ColorSpace::YUV) {
+      throw std::invalid_argument("class '" + c.name + "' is in " + toString(c.space) +
+                                  ": CMVision's colors.txt holds YUV ranges only");
+    }
+    colors << "(" << int(c.display_rgb[0]) << "," << int(c.display_rgb[1]) << "," << int(c.display_rgb[2])
+           << ") 0.5000 1 " << c.name << "\n";
+    thresholds << "(" << int(c.min[0]) << ":" << int(c.max[0]) << "," << int(c.min[1]) << ":" << int(c.max[1]) << ","
+               << int(c.min[2]) << ":" << int(c.max[2]) << ")\n";
+  }
+  return colors.str() + "\n" + thresholds.str();
+}
+
 namespace {
 
 std::vector<ColorClass> fileClassesWith(const std::string& path, const ColorClass& c) {
@@ -205,6 +221,21 @@ void writeText(const std::string& path, const std::string& text) {
 }
 
 }  // namespace
+
+std::vector<ColorClass> mergeColorClass(std::vector<ColorClass> classes, const ColorClass& c) {
+  auto same = std::find_if(classes.begin(), classes.end(), [&](const ColorClass& k) { return k.name == c.name; });
+  if (same == classes.end()) {
+    classes.push_back(c);
+    return classes;
+  }
+  // The new range replaces the old; a verifier the class had stays with it.
+  ColorClass replaced = c;
+  replaced.verifier_file = same->verifier_file;
+  replaced.verifier_path = same->verifier_path;
+  replaced.min_score = same->min_score;
+  *same = replaced;
+  return classes;
+}
 
 void saveColorClassInto(const ColorClass& c, const std::string& yaml_path, const std::string& cmvision_path) {
   const std::string yaml = yaml_path.empty() ? "" : colorClassesToYaml(fileClassesWith(yaml_path, c));

@@ -15,21 +15,6 @@ bool isPortableClassName(const std::string& name) {
   return !name.empty() && name.find_first_not_of(kAllowed) == std::string::npos;
 }
 
-std::vector<ColorClass> mergeColorClass(std::vector<ColorClass> classes, const ColorClass& c) {
-  auto same = std::find_if(classes.begin(), classes.end(), [&](const ColorClass& k) { return k.name == c.name; });
-  if (same == classes.end()) {
-    classes.push_back(c);
-    return classes;
-  }
-  // The new range replaces the old; a verifier the class had stays with it.
-  ColorClass replaced = c;
-  replaced.verifier_file = same->verifier_file;
-  replaced.verifier_path = same->verifier_path;
-  replaced.min_score = same->min_score;
-  *same = replaced;
-  return classes;
-}
-
 CalibrationSession::CalibrationSession(std::string class_name, CalibrationOptions options)
     : class_name_(std::move(class_name)), options_(options) {
   if (!isPortableClassName(class_name_)) {
@@ -47,6 +32,23 @@ int CalibrationSession::addFrame(const cv::Mat& bgr, const std::string& name) {
   e.bgr = bgr;
   examples_.push_back(std::move(e));
   return frameCount() - 1;
+}
+
+void CalibrationSession::addExamples(const std::vector<CalibrationExample>& examples) {
+  for (const CalibrationExample& e : examples) checkCalibrationExample(e);
+  for (const CalibrationExample& e : examples) {
+    examples_.push_back(e);
+    for (size_t i = 0; i < e.boxes.size(); ++i) history_.push_back(frameCount() - 1);
+  }
+  remeasure();
+}
+
+int CalibrationSession::addFrameWithBox(const cv::Mat& bgr, const std::string& name, const cv::Rect& box) {
+  const cv::Rect clipped = box & cv::Rect(0, 0, bgr.cols, bgr.rows);
+  if (clipped.width < 2 || clipped.height < 2) return -1;
+  const int index = addFrame(bgr, name);
+  addBox(index, clipped);
+  return index;
 }
 
 bool CalibrationSession::addBox(int frame_index, const cv::Rect& box) {
@@ -78,6 +80,7 @@ void CalibrationSession::cycleSpace() {
 }
 
 void CalibrationSession::remeasure() {
+  ++revision_;
   result_.reset();
   error_.clear();
   if (history_.empty()) return;
@@ -89,18 +92,8 @@ void CalibrationSession::remeasure() {
 }
 
 cv::Mat CalibrationSession::classMask(const cv::Mat& bgr) const {
-  cv::Mat mask = cv::Mat::zeros(bgr.size(), CV_8UC1);
-  if (!result_ || bgr.empty()) return mask;
-  const ColorClass& c = result_->color_class;
-  const cv::Mat converted = convertBgrImage(bgr, c.space);
-  for (int y = 0; y < converted.rows; ++y) {
-    const cv::Vec3b* row = converted.ptr<cv::Vec3b>(y);
-    uint8_t* out = mask.ptr<uint8_t>(y);
-    for (int x = 0; x < converted.cols; ++x) {
-      out[x] = c.contains(Channels{{row[x][0], row[x][1], row[x][2]}}) ? 255 : 0;
-    }
-  }
-  return mask;
+  if (!result_ || bgr.empty()) return cv::Mat::zeros(bgr.size(), CV_8UC1);
+  return colorClassMask(result_->color_class, bgr);
 }
 
 MaskCounts CalibrationSession::countMask(const cv::Mat& mask, const std::vector<cv::Rect>& boxes) {

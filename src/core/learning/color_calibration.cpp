@@ -67,20 +67,6 @@ std::vector<ModeColor> surroundings(const cv::Mat& image, const cv::Rect& box, c
   return modes;
 }
 
-void checkExample(const CalibrationExample& e) {
-  if (e.bgr.empty()) throw std::invalid_argument(e.name + ": empty or unreadable image");
-  if (e.bgr.type() != CV_8UC3) throw std::invalid_argument(e.name + ": the image must be 8-bit, 3 channels (BGR)");
-  const cv::Rect image(0, 0, e.bgr.cols, e.bgr.rows);
-  for (const cv::Rect& box : e.boxes) {
-    std::ostringstream where;
-    where << e.name << ": box " << box.x << "," << box.y << "," << box.br().x << "," << box.br().y;
-    if (box.width <= 0 || box.height <= 0) throw std::invalid_argument(where.str() + " is empty");
-    if ((box & image) != box) {
-      where << " lies outside the " << e.bgr.cols << "x" << e.bgr.rows << " image";
-      throw std::invalid_argument(where.str());
-    }
-  }
-}
 
 // Each box's object pixels counts once, however large the object: a weight per pixel.
 struct WeightedPixels {
@@ -246,6 +232,21 @@ Channels displayRgb(const ColorStats& s, ColorSpace space) {
 
 }  // namespace
 
+void checkCalibrationExample(const CalibrationExample& e) {
+  if (e.bgr.empty()) throw std::invalid_argument(e.name + ": empty or unreadable image");
+  if (e.bgr.type() != CV_8UC3) throw std::invalid_argument(e.name + ": the image must be 8-bit, 3 channels (BGR)");
+  const cv::Rect image(0, 0, e.bgr.cols, e.bgr.rows);
+  for (const cv::Rect& box : e.boxes) {
+    std::ostringstream where;
+    where << e.name << ": box " << box.x << "," << box.y << "," << box.br().x << "," << box.br().y;
+    if (box.width <= 0 || box.height <= 0) throw std::invalid_argument(where.str() + " is empty");
+    if ((box & image) != box) {
+      where << " lies outside the " << e.bgr.cols << "x" << e.bgr.rows << " image";
+      throw std::invalid_argument(where.str());
+    }
+  }
+}
+
 std::vector<Channels> objectPixelsInBox(const cv::Mat& image, const cv::Rect& box, const CalibrationOptions& o) {
   const std::vector<ModeColor> background = surroundings(image, box, o);
   // The object is round or boxy; the inscribed ellipse leaves out the corners of a round one.
@@ -291,7 +292,7 @@ CalibrationResult calibrateColorClass(const std::vector<CalibrationExample>& exa
   std::vector<std::vector<Channels>> objects;
   CalibrationResult result;
   for (const CalibrationExample& e : examples) {
-    checkExample(e);
+    checkCalibrationExample(e);
     converted.push_back(convertBgrImage(e.bgr, o.space));
     for (const cv::Rect& box : e.boxes) {
       std::vector<Channels> pixels = objectPixelsInBox(converted.back(), box, o);
@@ -327,21 +328,5 @@ CalibrationResult calibrateColorClass(const std::vector<CalibrationExample>& exa
   return result;
 }
 
-std::string cmvisionColorsText(const std::vector<ColorClass>& classes) {
-  std::ostringstream colors, thresholds;
-  colors << "[Colors]\n";
-  thresholds << "[Thresholds]\n";
-  for (const ColorClass& c : classes) {
-    if (c.space != ColorSpace::YUV) {
-      throw std::invalid_argument("class '" + c.name + "' is in " + toString(c.space) +
-                                  ": CMVision's colors.txt holds YUV ranges only");
-    }
-    colors << "(" << int(c.display_rgb[0]) << "," << int(c.display_rgb[1]) << "," << int(c.display_rgb[2])
-           << ") 0.5000 1 " << c.name << "\n";
-    thresholds << "(" << int(c.min[0]) << ":" << int(c.max[0]) << "," << int(c.min[1]) << ":" << int(c.max[1]) << ","
-               << int(c.min[2]) << ":" << int(c.max[2]) << ")\n";
-  }
-  return colors.str() + "\n" + thresholds.str();
-}
 
 }  // namespace rle_vision

@@ -5,6 +5,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "rle_vision/color/color_convert.h"
+
 namespace rle_vision {
 
 namespace {
@@ -31,15 +33,11 @@ cv::Scalar rangeCentreBgr(const ColorClass& c) {
 }  // namespace
 
 cv::Mat toDisplayBgr(const cv::Mat& image, PixelFormat format) {
+  // A camera's 4:2:2 is video-range YUV, which OpenCV's decode shows as the camera meant it.
   cv::Mat bgr;
-  switch (format) {
-    case PixelFormat::BGR8: bgr = image.clone(); break;
-    case PixelFormat::RGB8: cv::cvtColor(image, bgr, cv::COLOR_RGB2BGR); break;
-    case PixelFormat::MONO8: cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR); break;
-    case PixelFormat::UYVY: cv::cvtColor(image, bgr, cv::COLOR_YUV2BGR_UYVY); break;
-    case PixelFormat::YUYV: cv::cvtColor(image, bgr, cv::COLOR_YUV2BGR_YUY2); break;
-  }
-  return bgr;
+  if (format == PixelFormat::UYVY) cv::cvtColor(image, bgr, cv::COLOR_YUV2BGR_UYVY);
+  if (format == PixelFormat::YUYV) cv::cvtColor(image, bgr, cv::COLOR_YUV2BGR_YUY2);
+  return bgr.empty() ? frameToBgr(image, format) : bgr;
 }
 
 void drawBlobs(cv::Mat* canvas, const std::vector<TrackedBlob>& blobs, const ColorTable& table) {

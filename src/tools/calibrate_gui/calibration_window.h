@@ -17,6 +17,11 @@ enum class CalibrationCommand { kNone, kSave, kSendToTracker, kQuit };
 // Empty when a window can open; otherwise the one line that says why not and what to do.
 std::string displayProblem();
 
+// Saves the session's class into the files (an empty path: not that one) and returns what the
+// window's notice line should say: where it went, or why not.
+std::string saveSessionClass(const CalibrationSession& session, const std::string& yaml_path,
+                             const std::string& cmvision_path);
+
 class CalibrationWindow {
  public:
   // live: frames come from a camera (setLiveFrame), shown until the user freezes one or
@@ -33,10 +38,18 @@ class CalibrationWindow {
   CalibrationCommand step(int wait_ms);
 
  private:
+  // What the window shows: the camera, a camera frame held while a box is dragged on it (kept
+  // only if the box is), or a frame of the session.
+  enum class Shown { kLive, kHeld, kSessionFrame };
+
   static void onMouse(int event, int x, int y, int flags, void* self);
   void mouse(int event, int x, int y, int flags);
+  void endDrag(const cv::Rect& box);
   CalibrationCommand key(int code);
+  void keepLiveFrame();
+  void stepFrames(int direction);
   const cv::Mat& shownFrame() const;
+  bool closedByUser();
   void draw();
 
   CalibrationSession* session_;
@@ -44,11 +57,18 @@ class CalibrationWindow {
   std::string title_;
   std::string notice_;
   cv::Mat live_frame_;
-  bool showing_live_;
-  int current_ = -1;  // the session frame shown when not showing the live one
+  cv::Mat held_frame_;
+  Shown shown_;
+  int current_ = -1;  // the session frame shown as kSessionFrame
   bool dragging_ = false;
   cv::Point drag_start_;
   cv::Rect drag_box_;
+  bool seen_visible_ = false;
+  // The class mask of the frame shown, kept until the frame or the class changes (the frame
+  // is held, so that no new frame can take its buffer's address).
+  cv::Mat mask_frame_;
+  int mask_revision_ = -1;
+  cv::Mat mask_;
 };
 
 }  // namespace rle_vision

@@ -1,4 +1,6 @@
 // Colour conversion, the per-channel bit tables and the vectorised classifier.
+#include <algorithm>
+#include <cstdlib>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -41,6 +43,30 @@ TEST(ColorConvert, YuvIsBitExactWithOpenCvForAllColours) {
   EXPECT_EQ(s[0], e[0]);
   EXPECT_EQ(s[1], e[1]);
   EXPECT_EQ(s[2], e[2]);
+}
+
+TEST(ColorConvert, PackedYuvFramesReadAsTheCamerasOwnYuv) {
+  // Random colours, each on a pixel pair (which shares its chroma in 4:2:2): every colour
+  // a camera could send for it, none clipped on the way back.
+  cv::Mat pairs(60, 40, CV_8UC3), bgr;
+  cv::RNG(13).fill(pairs, cv::RNG::UNIFORM, 0, 256);
+  cv::resize(pairs, bgr, cv::Size(80, 60), 0, 0, cv::INTER_NEAREST);
+  const cv::Mat uyvy = bgrToUyvy(bgr);
+  const cv::Mat back = convertBgrImage(yuv422ToBgr(uyvy, /*is_uyvy=*/true), ColorSpace::YUV);
+  int worst = 0;
+  for (int y = 0; y < bgr.rows; ++y) {
+    for (int x = 0; x < bgr.cols; ++x) {
+      const uint8_t* pair = uyvy.ptr<uint8_t>(y) + 4 * (x / 2);
+      const int camera[3] = {pair[x % 2 == 0 ? 1 : 3], pair[0], pair[2]};
+      for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(back.at<cv::Vec3b>(y, x)[c] - camera[c]));
+    }
+  }
+  EXPECT_LE(worst, 2) << "the camera's Y, U, V within rounding";
+  cv::Mat opencv_bgr;
+  cv::cvtColor(uyvy, opencv_bgr, cv::COLOR_YUV2BGR_UYVY);
+  const cv::Mat opencv_yuv = convertBgrImage(opencv_bgr, ColorSpace::YUV);
+  EXPECT_GT(cv::norm(opencv_yuv, back, cv::NORM_INF), 10) << "OpenCV's video-range decode would shift ranges";
+  EXPECT_THROW(yuv422ToBgr(cv::Mat(4, 3, CV_8UC2), true), std::invalid_argument);
 }
 
 TEST(ColorClass, WrappedRangeContainsBothEnds) {

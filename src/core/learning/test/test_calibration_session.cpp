@@ -127,6 +127,35 @@ TEST(CalibrationSession, RefusesNamesAndFramesItCannotUse) {
   EXPECT_EQ(s.frameCount(), 0);
 }
 
+TEST(CalibrationSession, BoxesGivenUpFrontAreCheckedAndMeasuredOnce) {
+  cv::Mat ball;
+  CalibrationSession s = session();
+  CalibrationExample boxed{"boxed", scene(&ball, 9), {kBallBox}}, plain{"plain", scene(&ball, 10), {}};
+  CalibrationExample outside{"outside", scene(&ball, 11), {cv::Rect(230, 170, 20, 20)}};
+  EXPECT_THROW(s.addExamples({boxed, outside}), std::invalid_argument) << "a box past the 240x180 frame";
+  EXPECT_EQ(s.frameCount(), 0) << "nothing kept from a refused batch";
+  s.addExamples({boxed, plain});
+  EXPECT_EQ(s.frameCount(), 2);
+  EXPECT_EQ(s.boxCount(), 1);
+  EXPECT_EQ(s.revision(), 1) << "one measurement for the batch";
+  ASSERT_TRUE(s.result().has_value()) << s.lastError();
+  ASSERT_TRUE(s.undo()) << "boxes given up front can be undone";
+  EXPECT_FALSE(s.result().has_value());
+}
+
+TEST(CalibrationSession, ALiveFrameIsKeptOnlyWithABoxOnIt) {
+  cv::Mat ball;
+  const cv::Mat image = scene(&ball, 12);
+  CalibrationSession s = session();
+  EXPECT_EQ(s.addFrameWithBox(image, "click", cv::Rect(50, 50, 1, 1)), -1);
+  EXPECT_EQ(s.frameCount(), 0) << "a click keeps no frame for the background gate";
+  const int revision = s.revision();
+  EXPECT_EQ(s.addFrameWithBox(image, "drag", kBallBox), 0);
+  EXPECT_EQ(s.frameCount(), 1);
+  EXPECT_GT(s.revision(), revision);
+  EXPECT_TRUE(s.result().has_value()) << s.lastError();
+}
+
 TEST(CalibrationSession, MergingReplacesTheNamesakeAndKeepsItsVerifier) {
   ColorClass old_ball, field, new_ball;
   old_ball.name = new_ball.name = "ball";
