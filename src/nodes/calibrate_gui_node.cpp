@@ -18,8 +18,8 @@
 #include "color_range_conversions.h"
 #include "error_throttle.h"
 #include "image_conversions.h"
-#include "rle_vision/io/color_config.h"
 #include "rle_vision/color/color_convert.h"
+#include "rle_vision/io/color_config.h"
 
 namespace rle_vision {
 
