@@ -19,6 +19,7 @@
 
 #include "calibrate_gui/calibration_window.h"
 #include "rle_vision/learning/calibration_session.h"
+#include "rle_vision/learning/calibration_view.h"
 #include "rle_vision/learning/color_calibration.h"
 #include "rle_vision/io/color_config.h"
 #include "rle_vision/io/yolo_labels.h"
@@ -202,8 +203,13 @@ int runGui(const Arguments& args) {
   CalibrationSession session(args.name, args.options);
   session.addExamples(readExamples(args, false));
   CalibrationWindow window(&session, /*live=*/false);
+  int reported = session.revision();
   for (CalibrationCommand command = CalibrationCommand::kNone; command != CalibrationCommand::kQuit;) {
     command = window.step(30);
+    if (session.revision() != reported) {  // a box, an undo or a colour space: the class as it is now
+      reported = session.revision();
+      std::cerr << "rle_vision_calibrate: " << calibrationStatus(session, MaskCounts()).front() << "\n";
+    }
     if (command == CalibrationCommand::kSave) {
       const std::string notice = save(session, args);
       std::cerr << "rle_vision_calibrate: " << notice << "\n";
