@@ -20,7 +20,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "rle_vision/color/color_convert.h"
+#include "rle_vision/color/classifier.h"
 #include "rle_vision/io/color_config.h"
 #include "rle_vision/sim/scene_file.h"
 #include "rle_vision/sim/scene_simulator.h"

@@ -46,4 +46,8 @@ class PixelClassifier {
   std::vector<uint8_t> bgr_scratch_;  // 4:2:2 row converted to BGR for RGB/HSV classes
 };
 
+// The pixels of a CV_8UC3 BGR image that class `c` takes (CV_8UC1, 255 in the class), as the
+// tracker's classifier labels them.
+cv::Mat colorClassMask(const ColorClass& c, const cv::Mat& bgr);
+
 }  // namespace rle_vision

@@ -52,9 +52,6 @@ cv::Mat yuv422ToBgr(const cv::Mat& packed, bool is_uyvy);
 // through yuv422ToBgr, the others with OpenCV's conversions.
 cv::Mat frameToBgr(const cv::Mat& image, PixelFormat format);
 
-// The pixels of a CV_8UC3 BGR image that class `c` takes (CV_8UC1, 255 in the class).
-cv::Mat colorClassMask(const ColorClass& c, const cv::Mat& bgr);
-
 // Row helpers used by the classifier: split `width` interleaved pixels into planes.
 // `src_is_rgb` tells whether the source is R,G,B (true) or B,G,R (false) ordered.
 void bgrRowToYuvPlanes(const uint8_t* src, int width, bool src_is_rgb, uint8_t* y, uint8_t* u,

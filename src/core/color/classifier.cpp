@@ -139,4 +139,9 @@ cv::Mat PixelClassifier::classify(const cv::Mat& image, PixelFormat format, cons
   return labels;
 }
 
+cv::Mat colorClassMask(const ColorClass& c, const cv::Mat& bgr) {
+  PixelClassifier classifier;
+  return classifier.classify(bgr, PixelFormat::BGR8, ColorTable({c})) == 1;
+}
+
 }  // namespace rle_vision

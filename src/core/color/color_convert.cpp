@@ -138,17 +138,4 @@ cv::Mat frameToBgr(const cv::Mat& image, PixelFormat format) {
   return bgr;
 }
 
-cv::Mat colorClassMask(const ColorClass& c, const cv::Mat& bgr) {
-  const cv::Mat converted = convertBgrImage(bgr, c.space);
-  cv::Mat mask(bgr.size(), CV_8UC1);
-  for (int y = 0; y < converted.rows; ++y) {
-    const cv::Vec3b* row = converted.ptr<cv::Vec3b>(y);
-    uint8_t* out = mask.ptr<uint8_t>(y);
-    for (int x = 0; x < converted.cols; ++x) {
-      out[x] = c.contains(Channels{{row[x][0], row[x][1], row[x][2]}}) ? 255 : 0;
-    }
-  }
-  return mask;
-}
-
 }  // namespace rle_vision

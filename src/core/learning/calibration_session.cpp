@@ -6,7 +6,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "rle_vision/color/color_convert.h"
+#include "rle_vision/color/classifier.h"
 
 namespace rle_vision {
 
