@@ -47,7 +47,15 @@ bool loadSetup(const EvalArguments& a, Methods* m, std::vector<HorizonFrame>* so
   try {
     if (!a.params_file.empty()) m->options = loadLandmarkParams(a.params_file);
     m->no_model = m->options;
-    if (std::ifstream(a.model_file).good()) m->options.horizon.model = loadHorizonModel(a.model_file);
+    if (std::ifstream(a.model_file).good()) {
+      try {
+        m->options.horizon.model = loadHorizonModel(a.model_file);
+      } catch (const std::exception& e) {
+        // A model of an older feature set must not stop the fit that replaces it.
+        if (a.train_output.empty()) throw;
+        std::cerr << "rle_vision_eval_horizon: " << e.what() << " (ignored: --train-output writes a new one)\n";
+      }
+    }
     for (const std::string& dir : a.labelled) {
       const std::vector<HorizonFrame> f = eval::labelledFrames(dir);
       sources->insert(sources->end(), f.begin(), f.end());
@@ -119,6 +127,11 @@ void listFrame(const FrameData& f, const HorizonModel& model, double min_confide
   for (size_t i = 0; i < f.candidates.size(); ++i) {
     std::printf(" [%d p=%.2f prod=%.2f th=%.1f c=%.1f]", f.candidate_passes[i], model.probability(f.candidates[i].features),
                 f.candidates[i].confidence, f.candidates[i].line.theta * 180 / M_PI, f.candidates[i].line.intercept);
+    if (std::getenv("EVAL_HORIZON_FEATURES")) {
+      std::printf("{");
+      for (int k = 0; k < kHorizonFeatureCount; ++k) std::printf("%s%.2f", k ? " " : "", f.candidates[i].features[k]);
+      std::printf("}");
+    }
   }
   std::printf("\n");
 }

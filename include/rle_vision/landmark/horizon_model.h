@@ -18,6 +18,7 @@ enum HorizonFeature {
   kSkyBrighter,     // P(a sky cell is brighter than a ground cell)
   kGroundRougher,   // P(a ground edge value exceeds a sky one)
   kGroundTextured,  // the share of textured ground
+  kGroundTexturedRelative,  // the same in contrast relative to brightness (Weber): a tone curve keeps it
   kCoverage,        // the share of scan lines whose edge point lies on the line
   kFitSpread,       // inlier tolerance / (tolerance + the inliers' rms distance)
   kEdgeContrast,    // the edge value at the line over the sky's own high edge values (a ratio)

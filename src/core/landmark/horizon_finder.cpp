@@ -178,6 +178,7 @@ bool HorizonDetector::Impl::prepare(const cv::Mat& bgr, const cv::Mat& edges, co
   if (width / cell < 4 || height / cell < 4) return false;  // too small for the region grids
   fine.build(bgr, cell);
   coarse.buildHalf(fine);
+  refiner.sampleTexture(edges, fine);
   return true;
 }
 
@@ -268,6 +269,7 @@ HorizonFeatures HorizonDetector::Impl::features(const horizon::RefinedHorizon& r
   f[kSkyBrighter] = log_part(r.evidence.sky_brighter);
   f[kGroundRougher] = log_part(r.evidence.ground_rougher);
   f[kGroundTextured] = log_part(r.evidence.ground_textured);
+  f[kGroundTexturedRelative] = log_part(r.evidence.ground_textured_relative);
   f[kCoverage] = log_part(r.scanlines > 0 ? static_cast<double>(r.inliers) / r.scanlines : 0);
   f[kFitSpread] = log_part(o.inlier_px / (o.inlier_px + r.rms));
   f[kEdgeContrast] = log_part(saturating((r.edge_at_line + 1) / (r.sky_edge_level + 1)));

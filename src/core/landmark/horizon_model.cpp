@@ -9,7 +9,8 @@ namespace rle_vision {
 namespace {
 
 constexpr const char* kNames[kHorizonFeatureCount] = {
-    "separation", "sky_brighter", "ground_rougher", "ground_textured", "coverage", "fit_spread",
+    "separation", "sky_brighter", "ground_rougher", "ground_textured", "ground_textured_relative",
+    "coverage", "fit_spread",
     "edge_contrast", "local_step", "sky_share", "tilt", "from_regions"};
 
 constexpr int kNewtonSteps = 50;

@@ -12,14 +12,37 @@ constexpr double kAngleStepDeg = 0.25;  // the robust fit's angle steps
 constexpr int kSampleStride = 4;        // every 4th row and column samples the sides' edge values
 
 // P(a > b) + P(a == b) / 2 from two histograms of 256 bins (normalised or not).
-double probabilityGreater(const double* a, double a_total, const double* b, double b_total) {
+template <typename Count>
+double probabilityGreater(const Count* a, double a_total, const Count* b, double b_total) {
   if (a_total <= 0 || b_total <= 0) return 0.5;
   double below = 0, p = 0;
   for (int v = 0; v < 256; ++v) {
-    p += a[v] * (below + 0.5 * b[v]);
+    p += a[v] * (below + 0.5 * static_cast<double>(b[v]));
     below += b[v];
   }
   return p / (a_total * b_total);
+}
+
+// An edge value over the brightness around it, (edge + 1) / (luma + kDarkLuma), as one of 256
+// bins on a log scale (monotonic: comparisons between bins are comparisons of the ratios).
+// kDarkLuma keeps the darkest cells, where the sensor's noise is the texture, from dividing by
+// nothing.
+constexpr double kDarkLuma = 16;
+constexpr uint8_t kMidGrey = 128;
+struct RelativeContrastBins {
+  uint8_t bin[256][256];  // [luma][edge]
+  RelativeContrastBins() {
+    for (int luma = 0; luma < 256; ++luma) {
+      for (int edge = 0; edge < 256; ++edge) {
+        const double b = 170 + 20 * std::log2((edge + 1.0) / (luma + kDarkLuma));
+        bin[luma][edge] = static_cast<uint8_t>(std::clamp(static_cast<int>(b), 0, 255));
+      }
+    }
+  }
+};
+int relativeContrastBin(uint8_t edge, uint8_t luma) {
+  static const RelativeContrastBins table;
+  return table.bin[luma][edge];
 }
 
 // The value below which `percentile` % of a histogram's samples lie.
@@ -81,12 +104,12 @@ double bhattacharyyaDistance(const SideStats& a, const SideStats& b) {
 double HorizonRefiner::threshold(const cv::Mat& edges, const SplitLine& line, double band, const RefineOptions& o) {
   // The sky's own edge values (away from the band): a horizon point must beat most of them.
   int histogram[256] = {0}, samples = 0;
-  for (int y = 0; y < edges.rows; y += kSampleStride) {
-    const uint8_t* e = edges.ptr<uint8_t>(y);
-    sideRanges(line, y, edges.cols, band, [&](int first, int last, bool sky) {
+  for (int r = 0; r < sampled_edges_.rows; ++r) {
+    const uint8_t* e = sampled_edges_.ptr<uint8_t>(r);
+    sideRanges(line, r * kSampleStride, edges.cols, band, [&](int first, int last, bool sky) {
       if (!sky) return;
-      for (int x = (first + kSampleStride - 1) / kSampleStride * kSampleStride; x <= last; x += kSampleStride) {
-        ++histogram[e[x]];
+      for (int i = (first + kSampleStride - 1) / kSampleStride; i * kSampleStride <= last; ++i) {
+        ++histogram[e[i]];
         ++samples;
       }
     });
@@ -212,6 +235,24 @@ bool HorizonRefiner::robustFit(const SplitLine& start, const RefineOptions& o, S
   return true;
 }
 
+void HorizonRefiner::sampleTexture(const cv::Mat& edges, const RegionGrid& fine) {
+  const int rows = (edges.rows + kSampleStride - 1) / kSampleStride, cols = (edges.cols + kSampleStride - 1) / kSampleStride;
+  sampled_edges_.create(rows, cols, CV_8UC1);
+  sampled_relative_.create(rows, cols, CV_8UC1);
+  const int s = fine.cell(), last_row = fine.rows() - 1, last_col = fine.cols() - 1;
+  for (int r = 0; r < rows; ++r) {
+    const uint8_t* row = edges.ptr<uint8_t>(r * kSampleStride);
+    const uint8_t* luma = fine.luma(std::min(r * kSampleStride / s, last_row));
+    uint8_t* edge = sampled_edges_.ptr<uint8_t>(r);
+    uint8_t* relative = sampled_relative_.ptr<uint8_t>(r);
+    for (int i = 0; i < cols; ++i) {
+      const int x = i * kSampleStride;
+      edge[i] = row[x];
+      relative[i] = relativeContrastBin(row[x], luma[std::min(x / s, last_col)]);
+    }
+  }
+}
+
 RefinedHorizon HorizonRefiner::refine(const cv::Mat& edges, const RegionGrid& fine, const Hypothesis& h,
                                       const RefineOptions& o) {
   RefinedHorizon out;
@@ -314,24 +355,38 @@ Evidence HorizonRefiner::evidence(const cv::Mat& edges, const RegionGrid& fine, 
     });
   }
   e.sky_brighter = probabilityGreater(sky_luma, sky_cells, ground_luma, ground_cells);
-  // Texture: edge values sampled away from the band.
+  // Texture: the frame's samples (sampleTexture) away from the band. Which side is rougher is
+  // judged on the contrast relative to the brightness around (Weber), so that a tone curve
+  // (gamma, exposure) that squeezes a dark ground's steps and stretches a bright sky's does not
+  // swap the sides.
   const double band = o.band_cells * s;
-  double sky_edges[256] = {0}, ground_edges[256] = {0}, sky_samples = 0, ground_samples = 0;
-  for (int y = 0; y < edges.rows; y += kSampleStride) {
-    const uint8_t* row = edges.ptr<uint8_t>(y);
-    sideRanges(line, y, edges.cols, band, [&](int first, int last, bool sky) {
-      double* histogram = sky ? sky_edges : ground_edges;
-      double& samples = sky ? sky_samples : ground_samples;
-      for (int x = (first + kSampleStride - 1) / kSampleStride * kSampleStride; x <= last; x += kSampleStride) {
-        ++histogram[row[x]];
+  const int floor_edge = static_cast<int>(std::clamp(std::ceil(o.edge_floor), 0.0, 255.0));
+  int sky_relative[256] = {0}, ground_relative[256] = {0}, sky_samples = 0, ground_samples = 0;
+  int textured = 0;  // ground samples above the edge value of a noise-level step
+  for (int r = 0; r < sampled_edges_.rows; ++r) {
+    const uint8_t* edge = sampled_edges_.ptr<uint8_t>(r);
+    const uint8_t* relative = sampled_relative_.ptr<uint8_t>(r);
+    sideRanges(line, r * kSampleStride, edges.cols, band, [&](int first, int last, bool sky) {
+      int* histogram = sky ? sky_relative : ground_relative;
+      int samples = 0, above = 0;
+      for (int i = (first + kSampleStride - 1) / kSampleStride; i * kSampleStride <= last; ++i) {
+        ++histogram[relative[i]];
+        above += edge[i] >= floor_edge;
         ++samples;
       }
+      (sky ? sky_samples : ground_samples) += samples;
+      if (!sky) textured += above;
     });
   }
-  double textured = 0;
-  for (int v = static_cast<int>(std::ceil(o.edge_floor)); v < 256; ++v) textured += ground_edges[v];
-  e.ground_rougher = probabilityGreater(ground_edges, ground_samples, sky_edges, sky_samples);
-  e.ground_textured = ground_samples > 0 ? textured / ground_samples : 0;
+  // And in relative terms: above that step on a mid-grey surface (a dark ground's texture,
+  // squeezed by the tone curve, still counts).
+  int textured_relative = 0;
+  for (int v = relativeContrastBin(static_cast<uint8_t>(floor_edge), kMidGrey); v < 256; ++v) {
+    textured_relative += ground_relative[v];
+  }
+  e.ground_textured_relative = ground_samples > 0 ? static_cast<double>(textured_relative) / ground_samples : 0;
+  e.ground_rougher = probabilityGreater(ground_relative, ground_samples, sky_relative, sky_samples);
+  e.ground_textured = ground_samples > 0 ? static_cast<double>(textured) / ground_samples : 0;
   return e;
 }
 

@@ -15,8 +15,9 @@ namespace horizon {
 struct Evidence {
   double separation = 0;       // 1 - the Bhattacharyya coefficient of the sides' colour Gaussians
   double sky_brighter = 0.5;   // P(a sky cell is brighter than a ground cell), ties half
-  double ground_rougher = 0.5; // P(a ground pixel's edge value exceeds a sky pixel's)
+  double ground_rougher = 0.5; // P(a ground pixel's edge contrast exceeds a sky pixel's), relative to brightness
   double ground_textured = 0;  // share of ground pixels with an edge value above the noise floor
+  double ground_textured_relative = 0;  // the same, edge contrast relative to brightness (Weber)
   double confidence() const { return separation * sky_brighter * ground_rougher * ground_textured; }
   // Along the line, the colour step between the cells just above and just below it over the
   // colour change a cell further into either side (median over the cell columns, or rows for
@@ -55,9 +56,12 @@ class HorizonRefiner {
   // lines) across the band, the first edge maximum met coming from the sky side that beats
   // the thresholds above (the labelled top of the land; the stronger haze-to-ground step lies
   // below it), sub-pixel; then a robust line through those points.
+  // Before refine() and evidence() on a frame: its texture samples, every 4th row and column of
+  // the edge image and there the edge value over the brightness of its cell (log scale).
+  void sampleTexture(const cv::Mat& edges, const RegionGrid& fine);
   RefinedHorizon refine(const cv::Mat& edges, const RegionGrid& fine, const Hypothesis& hypothesis,
                         const RefineOptions& options);
-  // The evidence for a line as the horizon, from the grid's colours and the edge image.
+  // The evidence for a line as the horizon, from the grid's colours and the texture samples.
   Evidence evidence(const cv::Mat& edges, const RegionGrid& fine, const SplitLine& line, const RefineOptions& options);
 
  private:
@@ -76,6 +80,7 @@ class HorizonRefiner {
   std::vector<int> histogram_;
   std::vector<double> steps_, spreads_;
   double sky_edge_level_ = 0;
+  cv::Mat sampled_edges_, sampled_relative_;  // CV_8UC1, sampleTexture()
 };
 
 }  // namespace horizon

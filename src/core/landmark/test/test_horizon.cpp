@@ -177,6 +177,69 @@ TEST(Horizon, FoundOnTheSimulatedSkyWithItsEvidence) {
   }
 }
 
+// A bright, faintly textured sky (clouds) over a darker ground with more texture, the horizon
+// level at `row`; both textures the same smoothed noise field, scaled.
+cv::Mat cloudyFrame(int row) {
+  cv::Mat texture(480, 640, CV_32F);
+  cv::RNG rng(11);
+  rng.fill(texture, cv::RNG::NORMAL, 0.0, 1.0);
+  cv::GaussianBlur(texture, texture, cv::Size(0, 0), 1.5);
+  cv::Mat image(480, 640, CV_8UC3);
+  for (int y = 0; y < image.rows; ++y) {
+    for (int x = 0; x < image.cols; ++x) {
+      const bool sky = y < row;
+      const double v = (sky ? 200 : 80) + (sky ? 12 : 20) * texture.at<float>(y, x);
+      image.at<cv::Vec3b>(y, x) = cv::Vec3b(cv::saturate_cast<uint8_t>(v + (sky ? 20 : -10)), cv::saturate_cast<uint8_t>(v),
+                                            cv::saturate_cast<uint8_t>(v - (sky ? 10 : -5)));
+    }
+  }
+  return image;
+}
+
+// The candidate nearest the level line y = row.
+HorizonEstimate candidateAt(const cv::Mat& image, int row) {
+  LandmarkDetector detector;
+  LandmarkResult result;
+  const LandmarkOptions options;
+  detector.detectInImage(image, options, &result);
+  HorizonDetector horizons;
+  const ImageLine truth = lineThroughPoints(0, row, 1, row);
+  HorizonEstimate nearest;
+  double best = INFINITY;
+  for (const HorizonEstimate& c :
+       horizons.candidates(image, detector.edges(), options.edge_gain, result.lines, options.horizon)) {
+    const double d = std::fabs(signedDistance(c.line, 320, row)) + 100 * lineAngleDifference(c.line.theta, truth.theta);
+    if (d < best) best = d, nearest = c;
+  }
+  return nearest;
+}
+
+TEST(Horizon, TextureEvidenceHoldsUnderAToneCurve) {
+  // A tone curve (gamma 2: v -> 255 (v / 255)^2) squeezes the dark ground's steps and stretches
+  // the bright sky's: in grey levels the sky becomes the rougher side. Judged on contrast
+  // relative to the brightness around, the ground stays rougher and textured.
+  const int row = 200;
+  const cv::Mat image = cloudyFrame(row);
+  cv::Mat lut(1, 256, CV_8U);
+  for (int v = 0; v < 256; ++v) lut.at<uint8_t>(v) = cv::saturate_cast<uint8_t>(255 * std::pow(v / 255.0, 2));
+  cv::Mat dark;
+  cv::LUT(image, lut, dark);
+  const HorizonEstimate before = candidateAt(image, row), after = candidateAt(dark, row);
+  for (const HorizonEstimate* h : {&before, &after}) {
+    EXPECT_LT(std::fabs(signedDistance(h->line, 320, row)), 2.0);
+    EXPECT_GT(h->ground_rougher, 0.6) << (h == &before ? "as taken" : "gamma 2");
+  }
+  // The relative share of textured ground barely moves, where the share above the noise floor
+  // in grey levels falls.
+  const double relative_before = std::exp(before.features[kGroundTexturedRelative]);
+  const double relative_after = std::exp(after.features[kGroundTexturedRelative]);
+  EXPECT_GT(relative_after, 0.8 * relative_before);
+  EXPECT_LT(after.ground_textured, before.ground_textured);
+  std::printf("[ tone curve ] ground rougher %.2f -> %.2f; textured %.2f -> %.2f, relative %.2f -> %.2f\n",
+              before.ground_rougher, after.ground_rougher, before.ground_textured, after.ground_textured,
+              relative_before, relative_after);
+}
+
 TEST(Horizon, NeverSteeperThanTheLimit) {
   // The hazy horizon rolled 20 degrees: found there when the limit allows it; with a 10-degree
   // limit the searched splits stop at 10 degrees and the fit must not turn past it either.
