@@ -401,17 +401,13 @@ void TrackerNodelet::screenCandidates(const CameraFrame& frame, const ColorTable
   // The verifier judges BGR pixels, as it was trained: other formats are converted for it.
   const cv::Mat* bgr = &frame.image;
   if (frame.format != PixelFormat::BGR8) {
-    verifier_bgr_ = toDisplayBgr(frame.image, frame.format);
+    toDisplayBgr(frame.image, frame.format, &verifier_bgr_);  // into the buffer of the frames before
     bgr = &verifier_bgr_;
   }
   const ScreeningCounts counts = screen_.apply(*bgr, table, &blobs_, &above_field_);
   std::lock_guard<std::mutex> lock(screen_counts_mutex_);
-  for (ScreeningCounts* sum : {&screened_, &screened_total_}) {
-    sum->candidates += counts.candidates;
-    sum->scored += counts.scored;
-    sum->rejected += counts.rejected;
-    sum->over_cap += counts.over_cap;
-  }
+  screened_.add(counts);
+  screened_total_.add(counts);
   frames_over_cap_ += counts.over_cap > 0;
 }
 

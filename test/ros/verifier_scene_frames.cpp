@@ -5,10 +5,7 @@
 //   verifier_scene_frames FOLDER FRAMES SEED
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <string>
-
-#include <opencv2/imgcodecs.hpp>
 
 #include "testing/verifier_scenes.h"
 
@@ -17,21 +14,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: verifier_scene_frames FOLDER FRAMES SEED\n");
     return 2;
   }
-  const std::string folder = argv[1];
-  const int frames = std::atoi(argv[2]);
-  cv::RNG rng(std::strtoull(argv[3], nullptr, 10));
-  for (int i = 0; i < frames; ++i) {
-    const rle_vision::test::VerifierFrame f = rle_vision::test::drawVerifierFrame(rng);
-    const std::string name = folder + "/frame_" + std::to_string(i);
-    if (!cv::imwrite(name + ".png", f.bgr)) {
-      std::fprintf(stderr, "verifier_scene_frames: cannot write %s.png\n", name.c_str());
-      return 1;
-    }
-    std::ofstream label(name + ".txt");
-    for (const cv::Rect& b : f.balls) {
-      label << "0 " << (b.x + 0.5 * b.width) / f.bgr.cols << " " << (b.y + 0.5 * b.height) / f.bgr.rows << " "
-            << static_cast<double>(b.width) / f.bgr.cols << " " << static_cast<double>(b.height) / f.bgr.rows << "\n";
-    }
+  const std::string problem =
+      rle_vision::test::writeVerifierFolder(argv[1], std::atoi(argv[2]), std::strtoull(argv[3], nullptr, 10));
+  if (!problem.empty()) {
+    std::fprintf(stderr, "verifier_scene_frames: %s\n", problem.c_str());
+    return 1;
   }
   return 0;
 }

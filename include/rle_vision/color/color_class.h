@@ -60,4 +60,7 @@ struct ColorClass {
 // valid, otherwise the reason.
 std::string validateColorClasses(const std::vector<ColorClass>& classes);
 
+// True for a name colors.yaml and CMVision's colors.txt both take: letters, digits, '_', '-'.
+bool isPortableClassName(const std::string& name);
+
 }  // namespace rle_vision

@@ -67,6 +67,8 @@ class CalibrationSession {
 
  private:
   void remeasure();
+  // The box clipped to the frame; empty when less than 2 x 2 pixels remain to measure.
+  static cv::Rect usableBox(const cv::Rect& box, const cv::Mat& frame);
 
   std::string class_name_;
   CalibrationOptions options_;
@@ -76,8 +78,5 @@ class CalibrationSession {
   std::string error_;
   int revision_ = 0;
 };
-
-// True for a name colors.yaml and CMVision's colors.txt both take: letters, digits, '_', '-'.
-bool isPortableClassName(const std::string& name);
 
 }  // namespace rle_vision

@@ -34,6 +34,12 @@ struct ScreeningCounts {
   uint32_t scored = 0;
   uint32_t rejected = 0;  // scored below min_score
   uint32_t over_cap = 0;  // not scored: beyond max_candidates_per_frame
+  void add(const ScreeningCounts& o) {
+    candidates += o.candidates;
+    scored += o.scored;
+    rejected += o.rejected;
+    over_cap += o.over_cap;
+  }
 };
 
 class CandidateScreen {

@@ -83,4 +83,9 @@ std::string validateColorClasses(const std::vector<ColorClass>& classes) {
   return "";
 }
 
+bool isPortableClassName(const std::string& name) {
+  static const char* kAllowed = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-";
+  return !name.empty() && name.find_first_not_of(kAllowed) == std::string::npos;
+}
+
 }  // namespace rle_vision

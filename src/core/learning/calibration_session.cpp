@@ -10,11 +10,6 @@
 
 namespace rle_vision {
 
-bool isPortableClassName(const std::string& name) {
-  static const char* kAllowed = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-";
-  return !name.empty() && name.find_first_not_of(kAllowed) == std::string::npos;
-}
-
 CalibrationSession::CalibrationSession(std::string class_name, CalibrationOptions options)
     : class_name_(std::move(class_name)), options_(options) {
   if (!isPortableClassName(class_name_)) {
@@ -43,18 +38,22 @@ void CalibrationSession::addExamples(const std::vector<CalibrationExample>& exam
   remeasure();
 }
 
+cv::Rect CalibrationSession::usableBox(const cv::Rect& box, const cv::Mat& frame) {
+  const cv::Rect clipped = box & cv::Rect(0, 0, frame.cols, frame.rows);
+  return clipped.width < 2 || clipped.height < 2 ? cv::Rect() : clipped;
+}
+
 int CalibrationSession::addFrameWithBox(const cv::Mat& bgr, const std::string& name, const cv::Rect& box) {
-  const cv::Rect clipped = box & cv::Rect(0, 0, bgr.cols, bgr.rows);
-  if (clipped.width < 2 || clipped.height < 2) return -1;
+  if (usableBox(box, bgr).empty()) return -1;
   const int index = addFrame(bgr, name);
-  addBox(index, clipped);
+  addBox(index, box);
   return index;
 }
 
 bool CalibrationSession::addBox(int frame_index, const cv::Rect& box) {
   CalibrationExample& e = examples_.at(frame_index);
-  const cv::Rect clipped = box & cv::Rect(0, 0, e.bgr.cols, e.bgr.rows);
-  if (clipped.width < 2 || clipped.height < 2) return false;
+  const cv::Rect clipped = usableBox(box, e.bgr);
+  if (clipped.empty()) return false;
   e.boxes.push_back(clipped);
   history_.push_back(frame_index);
   remeasure();

@@ -32,12 +32,21 @@ cv::Scalar rangeCentreBgr(const ColorClass& c) {
 }
 }  // namespace
 
-cv::Mat toDisplayBgr(const cv::Mat& image, PixelFormat format) {
+void toDisplayBgr(const cv::Mat& image, PixelFormat format, cv::Mat* bgr) {
   // A camera's 4:2:2 is video-range YUV, which OpenCV's decode shows as the camera meant it.
+  if (format == PixelFormat::UYVY) {
+    cv::cvtColor(image, *bgr, cv::COLOR_YUV2BGR_UYVY);
+  } else if (format == PixelFormat::YUYV) {
+    cv::cvtColor(image, *bgr, cv::COLOR_YUV2BGR_YUY2);
+  } else {
+    *bgr = frameToBgr(image, format);
+  }
+}
+
+cv::Mat toDisplayBgr(const cv::Mat& image, PixelFormat format) {
   cv::Mat bgr;
-  if (format == PixelFormat::UYVY) cv::cvtColor(image, bgr, cv::COLOR_YUV2BGR_UYVY);
-  if (format == PixelFormat::YUYV) cv::cvtColor(image, bgr, cv::COLOR_YUV2BGR_YUY2);
-  return bgr.empty() ? frameToBgr(image, format) : bgr;
+  toDisplayBgr(image, format, &bgr);
+  return bgr;
 }
 
 void drawBlobs(cv::Mat* canvas, const std::vector<TrackedBlob>& blobs, const ColorTable& table) {

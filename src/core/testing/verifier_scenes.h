@@ -5,9 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace rle_vision {
@@ -49,6 +53,26 @@ inline VerifierFrame drawVerifierFrame(cv::RNG& rng) {
   }
   cv::fillPoly(f.bgr, std::vector<std::vector<cv::Point>>{patch}, yellow * 0.9);
   return f;
+}
+
+// Writes `frames` frames drawn from `seed` into the existing `folder` as frame_I.png with a YOLO
+// label file frame_I.txt beside each (class 0: the ball; empty files when `labels` is false).
+// Returns "" or what could not be written.
+inline std::string writeVerifierFolder(const std::string& folder, int frames, uint64_t seed, bool labels = true) {
+  cv::RNG rng(seed);
+  for (int i = 0; i < frames; ++i) {
+    const VerifierFrame f = drawVerifierFrame(rng);
+    const std::string name = folder + "/frame_" + std::to_string(i);
+    if (!cv::imwrite(name + ".png", f.bgr)) return "cannot write " + name + ".png";
+    std::ofstream label(name + ".txt");
+    for (const cv::Rect& b : f.balls) {
+      if (!labels) continue;
+      label << "0 " << (b.x + 0.5 * b.width) / f.bgr.cols << " " << (b.y + 0.5 * b.height) / f.bgr.rows << " "
+            << static_cast<double>(b.width) / f.bgr.cols << " " << static_cast<double>(b.height) / f.bgr.rows << "\n";
+    }
+    if (!label) return "cannot write " + name + ".txt";
+  }
+  return "";
 }
 
 }  // namespace test

@@ -153,15 +153,20 @@ CalibrationCommand CalibrationWindow::key(int code) {
 void CalibrationWindow::draw() {
   CalibrationView view;
   view.bgr = shownFrame();
-  if (view.bgr.data != mask_frame_.data || session_->revision() != mask_revision_) {
+  if (shown_ == Shown::kSessionFrame && current_ >= 0) view.boxes = session_->frame(current_).boxes;
+  const bool new_mask = view.bgr.data != mask_frame_.data || session_->revision() != mask_revision_;
+  if (new_mask) {
     mask_ = session_->classMask(view.bgr);
     mask_frame_ = view.bgr;
     mask_revision_ = session_->revision();
   }
+  if (new_mask || view.boxes != counted_boxes_) {  // redraws while dragging count nothing again
+    mask_counts_ = CalibrationSession::countMask(mask_, view.boxes);
+    counted_boxes_ = view.boxes;
+  }
   view.mask = mask_;
-  if (shown_ == Shown::kSessionFrame && current_ >= 0) view.boxes = session_->frame(current_).boxes;
   view.dragging = drag_box_;
-  view.status = calibrationStatus(*session_, CalibrationSession::countMask(view.mask, view.boxes));
+  view.status = calibrationStatus(*session_, mask_counts_);
   std::string where = "live";
   if (shown_ == Shown::kHeld) where = "live frame (held while the box is dragged)";
   if (shown_ == Shown::kSessionFrame && current_ >= 0) {

@@ -69,6 +69,8 @@ class CalibrationWindow {
   cv::Mat mask_frame_;
   int mask_revision_ = -1;
   cv::Mat mask_;
+  MaskCounts mask_counts_;  // of mask_ in counted_boxes_
+  std::vector<cv::Rect> counted_boxes_;
 };
 
 }  // namespace rle_vision

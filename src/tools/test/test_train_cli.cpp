@@ -32,18 +32,7 @@ std::string run(const std::string& command, int* status) {
 // `frames` labelled frames in `folder` (YOLO: class 0, the ball; `labels` false: none).
 void writeFolder(const std::string& folder, int frames, uint64_t seed, bool labels = true) {
   ASSERT_EQ(std::system(("rm -rf " + folder + " && mkdir -p " + folder).c_str()), 0);
-  cv::RNG rng(seed);
-  for (int i = 0; i < frames; ++i) {
-    const test::VerifierFrame f = test::drawVerifierFrame(rng);
-    const std::string name = folder + "/frame_" + std::to_string(i);
-    ASSERT_TRUE(cv::imwrite(name + ".png", f.bgr));
-    std::ofstream label(name + ".txt");
-    for (const cv::Rect& b : f.balls) {
-      if (!labels) continue;
-      label << "0 " << (b.x + 0.5 * b.width) / f.bgr.cols << " " << (b.y + 0.5 * b.height) / f.bgr.rows << " "
-            << static_cast<double>(b.width) / f.bgr.cols << " " << static_cast<double>(b.height) / f.bgr.rows << "\n";
-    }
-  }
+  ASSERT_EQ(test::writeVerifierFolder(folder, frames, seed, labels), "");
 }
 
 TEST(TrainCli, WritesAVerifierThatLoadsAndReportsHeldOutFolders) {
