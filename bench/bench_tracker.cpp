@@ -153,6 +153,57 @@ bool realFrame(const std::string& folder, cv::Mat* frame, std::vector<ColorClass
   }
 }
 
+// The noisy frames' cost as ratios to the clean frame's (issue 32: ratios hold on any machine),
+// segment + tracker with colors.txt on each path; the real frames per pixel.
+struct NoiseRatios {
+  double noise25_bgr = 0, noise25_uyvy = 0, noise60_bgr = 0, noise60_uyvy = 0, real_bgr = 0, real_uyvy = 0;
+  int real_frames = 0;
+};
+
+NoiseRatios noiseRatios(const BoundedTimes& clean, const cv::Size& clean_size, const BoundedTimes& noise25,
+                        const BoundedTimes& noise60, const std::vector<cv::Mat>& real_frames,
+                        const std::vector<ColorClass>& classes) {
+  NoiseRatios r;
+  r.noise25_bgr = noise25.tracked_bgr_ms / clean.tracked_bgr_ms;
+  r.noise25_uyvy = noise25.tracked_uyvy_ms / clean.tracked_uyvy_ms;
+  r.noise60_bgr = noise60.tracked_bgr_ms / clean.tracked_bgr_ms;
+  r.noise60_uyvy = noise60.tracked_uyvy_ms / clean.tracked_uyvy_ms;
+  const double clean_pixels = static_cast<double>(clean_size.area());
+  for (const cv::Mat& frame : real_frames) {
+    const BoundedTimes t = timeBounded(frame, classes);
+    const double pixels = static_cast<double>(frame.total());
+    r.real_bgr += (t.tracked_bgr_ms / pixels) / (clean.tracked_bgr_ms / clean_pixels) / real_frames.size();
+    r.real_uyvy += (t.tracked_uyvy_ms / pixels) / (clean.tracked_uyvy_ms / clean_pixels) / real_frames.size();
+  }
+  r.real_frames = static_cast<int>(real_frames.size());
+  return r;
+}
+
+// Up to `count` frames of a folder (its first images, sorted).
+std::vector<cv::Mat> firstFrames(const std::string& folder, size_t count) {
+  std::vector<cv::Mat> frames;
+  if (folder.empty()) return frames;
+  for (const std::string& path : imagesInFolder(folder)) {
+    if (frames.size() == count) break;
+    cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
+    if (!image.empty() && image.cols % 2 == 0) frames.push_back(image);  // UYVY pairs pixels
+  }
+  return frames;
+}
+
+void printNoiseRatios(const BoundedTimes& clean, const NoiseRatios& r) {
+  std::printf("  noisy against clean, segment + tracker, colors.txt (clean frame: %.3f ms bgr8, %.3f ms yuv422):\n",
+              clean.tracked_bgr_ms, clean.tracked_uyvy_ms);
+  std::printf("    %-42s %6.2f x bgr8 %6.2f x yuv422   (targets <= 1.3 x)\n", "noise sigma 25 / clean", r.noise25_bgr,
+              r.noise25_uyvy);
+  std::printf("    %-42s %6.2f x bgr8 %6.2f x yuv422   (targets <= 3 x)\n", "noise sigma 60 / clean", r.noise60_bgr,
+              r.noise60_uyvy);
+  if (r.real_frames > 0) {
+    std::printf("    %-42s %6.2f x bgr8 %6.2f x yuv422   (%d frames, time per pixel)\n", "real robot frames / clean",
+                r.real_bgr, r.real_uyvy, r.real_frames);
+  }
+}
+
 // The tracker loop while colour learning replaces the table: an updater thread on the other CPU
 // stores another table (ranges nudged) after every frame; the frame path takes a snapshot per
 // frame, as the Tracker nodelet does, and never waits. Returns the median frame time.
@@ -283,6 +334,9 @@ int main(int argc, char** argv) {
   const std::vector<ColorClass> cmvision_classes = loadColorClasses(source_dir + "/config/colors.txt");
   const BoundedTimes bounded25 = timeBounded(noisyBenchmarkFrame(source_dir, 25), cmvision_classes);
   const BoundedTimes bounded60 = timeBounded(noisyBenchmarkFrame(source_dir, 60), cmvision_classes);
+  const BoundedTimes bounded_clean = timeBounded(frame.image, cmvision_classes);
+  const NoiseRatios ratios = noiseRatios(bounded_clean, frame.image.size(), bounded25, bounded60,
+                                         firstFrames(real_folder, 3), cmvision_classes);
   cv::Mat real;
   std::vector<ColorClass> real_classes;
   const bool have_real = !real_folder.empty() && realFrame(real_folder, &real, &real_classes);
@@ -304,6 +358,7 @@ int main(int argc, char** argv) {
   std::printf("    %-42s targets: segment + tracker bgr8 <= 0.5 ms\n", "");
   printBounded("noise sigma 60", bounded60);
   std::printf("    %-42s targets: segment + tracker yuv422 <= 1.6 ms, bgr8 <= 3 ms\n", "");
+  printNoiseRatios(bounded_clean, ratios);
   std::printf("  verifier (config/ball_verifier.yml), %zu candidates on the 640x480 frame, %zu scored (the cap):\n",
               verifier.candidates, verifier.scored);
   std::printf("    %-42s %8.3f ms\n", "segment + tracker alone", verifier.tracker_ms);
@@ -322,6 +377,14 @@ int main(int argc, char** argv) {
   addFrame("real", real_times, &values);
   addBounded("noise25", bounded25, &values);
   addBounded("noise60", bounded60, &values);
+  addBounded("clean", bounded_clean, &values);
+  values.insert(values.end(), {{"noise25_to_clean_tracker_ratio", ratios.noise25_bgr},
+                               {"noise25_to_clean_tracker_yuv422_ratio", ratios.noise25_uyvy},
+                               {"noise60_to_clean_tracker_ratio", ratios.noise60_bgr},
+                               {"noise60_to_clean_tracker_yuv422_ratio", ratios.noise60_uyvy},
+                               {"real_to_clean_tracker_ratio_per_pixel", ratios.real_bgr},
+                               {"real_to_clean_tracker_yuv422_ratio_per_pixel", ratios.real_uyvy},
+                               {"real_ratio_frames", static_cast<double>(ratios.real_frames)}});
   values.push_back({"verifier_candidates", static_cast<double>(verifier.candidates)});
   values.push_back({"verifier_scored", static_cast<double>(verifier.scored)});
   values.push_back({"verifier_frame_tracker_ms", verifier.tracker_ms});

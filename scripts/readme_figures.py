@@ -93,6 +93,25 @@ def tracker_bounded():
             provenance('make bench', 'tracker', d))
 
 
+def tracker_noise_ratios():
+    d = load('tracker')
+    if 'noise25_to_clean_tracker_ratio' not in d:
+        raise KeyError('noise25_to_clean_tracker_ratio (make bench writes it)')
+    met = lambda value, bound: '%.2fx (≤ %gx: %s)' % (value, bound, 'met' if value <= bound else '**not met**')  # noqa: E731
+    rows = [['noise σ = 25 / clean', met(d['noise25_to_clean_tracker_ratio'], 1.3),
+             met(d['noise25_to_clean_tracker_yuv422_ratio'], 1.3)],
+            ['noise σ = 60 / clean', met(d['noise60_to_clean_tracker_ratio'], 3),
+             met(d['noise60_to_clean_tracker_yuv422_ratio'], 3)]]
+    if d.get('real_ratio_frames', 0) > 0:
+        rows.append(['%d real 608x800 robot frames / clean, per pixel' % d['real_ratio_frames'],
+                     '%.2fx' % d['real_to_clean_tracker_ratio_per_pixel'],
+                     '%.2fx' % d['real_to_clean_tracker_yuv422_ratio_per_pixel']])
+    rows.append(['clean frame (the ratios\' base)', ms(d['bounded_clean_tracker_ms'], 3),
+                 ms(d['bounded_clean_tracker_yuv422_ms'], 3)])
+    return (table(['segment + tracker, `colors.txt`', 'bgr8', 'yuv422 (UYVY)'], rows) + '\n\n' +
+            provenance('make bench', 'tracker', d))
+
+
 def landmark():
     d = load('landmark')
     x = lambda ours, theirs: theirs / ours  # noqa: E731
@@ -288,7 +307,7 @@ def latency():
             provenance('make bench-latency', 'latency', d))
 
 
-WRITERS = {f.__name__: f for f in (tracker, tracker_noise, tracker_bounded, landmark, eval_horizon, eval_no_horizon,
+WRITERS = {f.__name__: f for f in (tracker, tracker_noise, tracker_bounded, tracker_noise_ratios, landmark, eval_horizon, eval_no_horizon,
                                    eval_robustness, eval_balls,
                                    eval_balls_bound, eval_field, eval_balls_by_date, eval_verifier, latency)}
 
