@@ -79,7 +79,9 @@ void printFrame(const char* name, const FrameTimes& t) {
 struct BoundedTimes {
   double segment_bgr_ms = 0, segment_uyvy_ms = 0, tracked_bgr_ms = 0, tracked_uyvy_ms = 0;
   double every_region_bgr_ms = 0, every_region_uyvy_ms = 0;
+  double tracked_bgr_pair_ms = 0;  // bgr8 with bgr_pair_chroma (issue 32)
   size_t regions_bgr = 0, regions_uyvy = 0, blobs_bgr = 0, blobs_uyvy = 0;
+  size_t runs_bgr = 0, runs_uyvy = 0, runs_bgr_pair = 0;
 };
 
 BoundedTimes timeBounded(const cv::Mat& bgr, const std::vector<ColorClass>& classes) {
@@ -96,6 +98,7 @@ BoundedTimes timeBounded(const cv::Mat& bgr, const std::vector<ColorClass>& clas
       bench::keep(regions);
     });
     (is_uyvy ? t.regions_uyvy : t.regions_bgr) = regions.size();
+    (is_uyvy ? t.runs_uyvy : t.runs_bgr) = segmenter.runs().size();
     std::vector<TrackedBlob> blobs;
     double stamp = 0;
     ColorTracker tracker;
@@ -113,6 +116,19 @@ BoundedTimes timeBounded(const cv::Mat& bgr, const std::vector<ColorClass>& clas
       bench::keep(blobs);
     }, 40, 5);
   }
+  SegmenterOptions pair_chroma;
+  pair_chroma.bgr_pair_chroma = true;
+  ColorTracker paired(pair_chroma);
+  std::vector<TrackedBlob> blobs;
+  double stamp = 0;
+  t.tracked_bgr_pair_ms = bench::medianMs([&] {
+    paired.process(bgr, PixelFormat::BGR8, table, stamp += 1.0 / 30, &blobs);
+    bench::keep(blobs);
+  });
+  Segmenter segmenter(pair_chroma);
+  std::vector<Region> regions;
+  segmenter.segment(bgr, PixelFormat::BGR8, table, &regions);
+  t.runs_bgr_pair = segmenter.runs().size();
   return t;
 }
 
@@ -157,6 +173,7 @@ bool realFrame(const std::string& folder, cv::Mat* frame, std::vector<ColorClass
 // segment + tracker with colors.txt on each path; the real frames per pixel.
 struct NoiseRatios {
   double noise25_bgr = 0, noise25_uyvy = 0, noise60_bgr = 0, noise60_uyvy = 0, real_bgr = 0, real_uyvy = 0;
+  double noise25_bgr_pair = 0, noise60_bgr_pair = 0, real_bgr_pair = 0;
   int real_frames = 0;
 };
 
@@ -168,12 +185,15 @@ NoiseRatios noiseRatios(const BoundedTimes& clean, const cv::Size& clean_size, c
   r.noise25_uyvy = noise25.tracked_uyvy_ms / clean.tracked_uyvy_ms;
   r.noise60_bgr = noise60.tracked_bgr_ms / clean.tracked_bgr_ms;
   r.noise60_uyvy = noise60.tracked_uyvy_ms / clean.tracked_uyvy_ms;
+  r.noise25_bgr_pair = noise25.tracked_bgr_pair_ms / clean.tracked_bgr_pair_ms;
+  r.noise60_bgr_pair = noise60.tracked_bgr_pair_ms / clean.tracked_bgr_pair_ms;
   const double clean_pixels = static_cast<double>(clean_size.area());
   for (const cv::Mat& frame : real_frames) {
     const BoundedTimes t = timeBounded(frame, classes);
     const double pixels = static_cast<double>(frame.total());
     r.real_bgr += (t.tracked_bgr_ms / pixels) / (clean.tracked_bgr_ms / clean_pixels) / real_frames.size();
     r.real_uyvy += (t.tracked_uyvy_ms / pixels) / (clean.tracked_uyvy_ms / clean_pixels) / real_frames.size();
+    r.real_bgr_pair += (t.tracked_bgr_pair_ms / pixels) / (clean.tracked_bgr_pair_ms / clean_pixels) / real_frames.size();
   }
   r.real_frames = static_cast<int>(real_frames.size());
   return r;
@@ -194,14 +214,15 @@ std::vector<cv::Mat> firstFrames(const std::string& folder, size_t count) {
 void printNoiseRatios(const BoundedTimes& clean, const NoiseRatios& r) {
   std::printf("  noisy against clean, segment + tracker, colors.txt (clean frame: %.3f ms bgr8, %.3f ms yuv422):\n",
               clean.tracked_bgr_ms, clean.tracked_uyvy_ms);
-  std::printf("    %-42s %6.2f x bgr8 %6.2f x yuv422   (targets <= 1.3 x)\n", "noise sigma 25 / clean", r.noise25_bgr,
-              r.noise25_uyvy);
-  std::printf("    %-42s %6.2f x bgr8 %6.2f x yuv422   (targets <= 3 x)\n", "noise sigma 60 / clean", r.noise60_bgr,
-              r.noise60_uyvy);
+  std::printf("    %-42s %6.2f x bgr8 %6.2f x yuv422 %6.2f x bgr8 pair chroma  (targets <= 1.3 x)\n",
+              "noise sigma 25 / clean", r.noise25_bgr, r.noise25_uyvy, r.noise25_bgr_pair);
+  std::printf("    %-42s %6.2f x bgr8 %6.2f x yuv422 %6.2f x bgr8 pair chroma  (targets <= 3 x)\n",
+              "noise sigma 60 / clean", r.noise60_bgr, r.noise60_uyvy, r.noise60_bgr_pair);
   if (r.real_frames > 0) {
-    std::printf("    %-42s %6.2f x bgr8 %6.2f x yuv422   (%d frames, time per pixel)\n", "real robot frames / clean",
-                r.real_bgr, r.real_uyvy, r.real_frames);
+    std::printf("    %-42s %6.2f x bgr8 %6.2f x yuv422 %6.2f x bgr8 pair chroma  (%d frames, time per pixel)\n",
+                "real robot frames / clean", r.real_bgr, r.real_uyvy, r.real_bgr_pair, r.real_frames);
   }
+  std::printf("    %-42s %8.3f ms bgr8 pair chroma\n", "clean frame", clean.tracked_bgr_pair_ms);
 }
 
 // The tracker loop while colour learning replaces the table: an updater thread on the other CPU
@@ -287,8 +308,25 @@ void addBounded(const std::string& name, const BoundedTimes& t, Values* values) 
                                  {key + "tracker_yuv422_ms", t.tracked_uyvy_ms},
                                  {key + "every_region_ms", t.every_region_bgr_ms},
                                  {key + "every_region_yuv422_ms", t.every_region_uyvy_ms},
+                                 {key + "tracker_pair_chroma_ms", t.tracked_bgr_pair_ms},
+                                 {key + "runs", static_cast<double>(t.runs_bgr)},
+                                 {key + "runs_yuv422", static_cast<double>(t.runs_uyvy)},
+                                 {key + "runs_pair_chroma", static_cast<double>(t.runs_bgr_pair)},
                                  {key + "regions", static_cast<double>(t.regions_bgr)},
                                  {key + "regions_yuv422", static_cast<double>(t.regions_uyvy)}});
+}
+
+void addNoiseRatios(const NoiseRatios& r, Values* values) {
+  values->insert(values->end(), {{"noise25_to_clean_tracker_ratio", r.noise25_bgr},
+                                 {"noise25_to_clean_tracker_yuv422_ratio", r.noise25_uyvy},
+                                 {"noise60_to_clean_tracker_ratio", r.noise60_bgr},
+                                 {"noise60_to_clean_tracker_yuv422_ratio", r.noise60_uyvy},
+                                 {"real_to_clean_tracker_ratio_per_pixel", r.real_bgr},
+                                 {"real_to_clean_tracker_yuv422_ratio_per_pixel", r.real_uyvy},
+                                 {"noise25_to_clean_tracker_pair_chroma_ratio", r.noise25_bgr_pair},
+                                 {"noise60_to_clean_tracker_pair_chroma_ratio", r.noise60_bgr_pair},
+                                 {"real_to_clean_tracker_pair_chroma_ratio_per_pixel", r.real_bgr_pair},
+                                 {"real_ratio_frames", static_cast<double>(r.real_frames)}});
 }
 
 // The clean frame's figures: ours (bgr8, UYVY, with table swaps), OpenCV's, memcpy's.
@@ -378,13 +416,7 @@ int main(int argc, char** argv) {
   addBounded("noise25", bounded25, &values);
   addBounded("noise60", bounded60, &values);
   addBounded("clean", bounded_clean, &values);
-  values.insert(values.end(), {{"noise25_to_clean_tracker_ratio", ratios.noise25_bgr},
-                               {"noise25_to_clean_tracker_yuv422_ratio", ratios.noise25_uyvy},
-                               {"noise60_to_clean_tracker_ratio", ratios.noise60_bgr},
-                               {"noise60_to_clean_tracker_yuv422_ratio", ratios.noise60_uyvy},
-                               {"real_to_clean_tracker_ratio_per_pixel", ratios.real_bgr},
-                               {"real_to_clean_tracker_yuv422_ratio_per_pixel", ratios.real_uyvy},
-                               {"real_ratio_frames", static_cast<double>(ratios.real_frames)}});
+  addNoiseRatios(ratios, &values);
   values.push_back({"verifier_candidates", static_cast<double>(verifier.candidates)});
   values.push_back({"verifier_scored", static_cast<double>(verifier.scored)});
   values.push_back({"verifier_frame_tracker_ms", verifier.tracker_ms});

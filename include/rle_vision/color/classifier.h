@@ -28,6 +28,9 @@ class PixelClassifier {
                    uint8_t* labels);
   // Whole image (checked with checkImage(); throws std::invalid_argument) to a CV_8UC1 label image.
   cv::Mat classify(const cv::Mat& image, PixelFormat format, const ColorTable& table);
+  // On BGR/RGB rows, YUV classes see each pixel pair's (0-1, 2-3, ...) mean chroma,
+  // (a + b + 1) / 2 for U and V, as a 4:2:2 camera sends it; Y stays per pixel. Off by default.
+  void setBgrPairChroma(bool on) { bgr_pair_chroma_ = on; }
 
  private:
   void ensureWidth(int width);
@@ -40,6 +43,7 @@ class PixelClassifier {
   std::shared_ptr<YuvBoxes> yuv_boxes_;
   uint64_t yuv_boxes_serial_ = 0;
 
+  bool bgr_pair_chroma_ = false;
   int width_ = 0;
   std::vector<uint8_t> planes_[kNumColorSpaces][3];
   std::vector<uint8_t> scratch_;      // interleaved HSV row

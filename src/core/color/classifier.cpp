@@ -27,6 +27,10 @@ void applyClassBox(const uint8_t* __restrict c0, const uint8_t* __restrict c1,
   }
 }
 
+// Each pixel pair's mean, (a + b + 1) / 2, in both (a last odd pixel keeps its own).
+void averagePairs(uint8_t* plane, int width) {
+  for (int x = 0; x + 1 < width; x += 2) plane[x] = plane[x + 1] = static_cast<uint8_t>((plane[x] + plane[x + 1] + 1) >> 1);
+}
 
 }  // namespace
 
@@ -92,11 +96,16 @@ void PixelClassifier::classifyRow(const uint8_t* src, int width, PixelFormat for
   if (format == PixelFormat::BGR8 || format == PixelFormat::RGB8) {
     if (yuvClassifyAvx2Available()) {
       if (const YuvBoxes* boxes = yuvBoxesFor(table)) {
-        classifyRowYuvAvx2(src, width, format == PixelFormat::RGB8, *boxes, labels);
+        classifyRowYuvAvx2(src, width, format == PixelFormat::RGB8, bgr_pair_chroma_, *boxes, labels);
         return;
       }
     }
     planesFromRgbRow(src, width, format == PixelFormat::RGB8, table, /*with_yuv=*/true);
+    if (bgr_pair_chroma_ && table.classesIn(ColorSpace::YUV)) {
+      auto& p = planes_[static_cast<int>(ColorSpace::YUV)];
+      averagePairs(p[1].data(), width);
+      averagePairs(p[2].data(), width);
+    }
   } else {  // 4:2:2
     const bool is_uyvy = format == PixelFormat::UYVY;
     if (yuvClassifyAvx2Available()) {

@@ -139,7 +139,7 @@ void classifyRowYuv422Avx2(const uint8_t* src, int width, bool is_uyvy, const Yu
 }
 
 RLE_VISION_AVX2
-void classifyRowYuvAvx2(const uint8_t* src, int width, bool src_is_rgb, const YuvBoxes& boxes,
+void classifyRowYuvAvx2(const uint8_t* src, int width, bool src_is_rgb, bool pair_chroma, const YuvBoxes& boxes,
                         uint8_t* labels) {
   // pshufb masks gathering one channel of 16 pixels from three 16-byte blocks (-1: zero).
   const __m256i first_a = _mm256_broadcastsi128_si256(_mm_setr_epi8(0, 3, 6, 9, 12, 15, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1));
@@ -152,6 +152,8 @@ void classifyRowYuvAvx2(const uint8_t* src, int width, bool src_is_rgb, const Yu
   const __m256i last_b = _mm256_broadcastsi128_si256(_mm_setr_epi8(-1, -1, -1, -1, -1, 1, 4, 7, 10, 13, -1, -1, -1, -1, -1, -1));
   const __m256i last_c = _mm256_broadcastsi128_si256(_mm_setr_epi8(-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 3, 6, 9, 12, 15));
 
+  // Swaps the bytes of each pixel pair: averaged with the original, both get the pair's mean.
+  const __m256i pair_swap = _mm256_broadcastsi128_si256(_mm_setr_epi8(1, 0, 3, 2, 5, 4, 7, 6, 9, 8, 11, 10, 13, 12, 15, 14));
   const BoxVectors box_vectors(boxes);
   int x = 0;
   for (; x + 32 <= width; x += 32) {
@@ -176,21 +178,37 @@ void classifyRowYuvAvx2(const uint8_t* src, int width, bool src_is_rgb, const Yu
           _mm256_cvtepu8_epi16(_mm256_castsi256_si128(blue8)), &y0, &u0, &v0);
     yuv16(_mm256_cvtepu8_epi16(_mm256_extracti128_si256(red8, 1)), _mm256_cvtepu8_epi16(_mm256_extracti128_si256(mid, 1)),
           _mm256_cvtepu8_epi16(_mm256_extracti128_si256(blue8, 1)), &y1, &u1, &v1);
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(labels + x),
-                        labelsOf(packBytes(y0, y1), packBytes(u0, u1), packBytes(v0, v1), box_vectors));
+    __m256i u = packBytes(u0, u1), v = packBytes(v0, v1);
+    if (pair_chroma) {
+      u = _mm256_avg_epu8(u, _mm256_shuffle_epi8(u, pair_swap));
+      v = _mm256_avg_epu8(v, _mm256_shuffle_epi8(v, pair_swap));
+    }
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(labels + x), labelsOf(packBytes(y0, y1), u, v, box_vectors));
   }
-  // The last < 32 pixels, scalar.
+  // The last < 32 pixels (x even: pairs as above), scalar.
   const int r_index = src_is_rgb ? 0 : 2;
-  for (; x < width; ++x) {
+  for (; x < width; x += 2) {
     const uint8_t* p = src + 3 * x;
-    labels[x] = labelOf(yuvFromRgb(p[r_index], p[1], p[2 - r_index]), boxes);
+    Channels first = yuvFromRgb(p[r_index], p[1], p[2 - r_index]);
+    if (x + 1 == width) {
+      labels[x] = labelOf(first, boxes);
+      break;
+    }
+    Channels second = yuvFromRgb(p[3 + r_index], p[4], p[5 - r_index]);
+    if (pair_chroma) {
+      for (int ch = 1; ch < 3; ++ch) {
+        first[ch] = second[ch] = static_cast<uint8_t>((first[ch] + second[ch] + 1) >> 1);
+      }
+    }
+    labels[x] = labelOf(first, boxes);
+    labels[x + 1] = labelOf(second, boxes);
   }
 }
 
 #else  // no AVX2 kernel on this platform
 
 bool yuvClassifyAvx2Available() { return false; }
-void classifyRowYuvAvx2(const uint8_t*, int, bool, const YuvBoxes&, uint8_t*) {}
+void classifyRowYuvAvx2(const uint8_t*, int, bool, bool, const YuvBoxes&, uint8_t*) {}
 void classifyRowYuv422Avx2(const uint8_t*, int, bool, const YuvBoxes&, uint8_t*) {}
 
 #endif

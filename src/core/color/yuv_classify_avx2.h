@@ -19,8 +19,10 @@ struct YuvBoxes {
 bool yuvClassifyAvx2Available();
 
 // Labels `width` pixels of an interleaved 8-bit row (B,G,R order, or R,G,B when src_is_rgb).
+// With `pair_chroma`, each pixel pair (0-1, 2-3, ...) is classified on its mean U and V,
+// (a + b + 1) / 2, as 4:2:2 sends them (a last odd pixel keeps its own).
 // Only call when yuvClassifyAvx2Available().
-void classifyRowYuvAvx2(const uint8_t* src, int width, bool src_is_rgb, const YuvBoxes& boxes,
+void classifyRowYuvAvx2(const uint8_t* src, int width, bool src_is_rgb, bool pair_chroma, const YuvBoxes& boxes,
                         uint8_t* labels);
 
 // The same for a 4:2:2 row (UYVY, or YUYV when !is_uyvy): each pixel pair shares its U and V.

@@ -14,6 +14,7 @@ void Segmenter::segment(const cv::Mat& image, PixelFormat format, const ColorTab
   labels_.resize(static_cast<size_t>(width));
   runs_.clear();
   row_starts_.resize(static_cast<size_t>(height) + 1);
+  classifier_.setBgrPairChroma(options_.bgr_pair_chroma);
   for (int y = 0; y < height; ++y) {
     row_starts_[y] = static_cast<int32_t>(runs_.size());
     classifier_.classifyRow(image.ptr<uint8_t>(y), width, format, table, labels_.data());

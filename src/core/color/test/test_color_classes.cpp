@@ -209,6 +209,62 @@ TEST(PixelClassifier, FirstListedClassWinsWhereClassesOverlap) {
   EXPECT_EQ(labels.at<uint8_t>(0, 1), 2);
 }
 
+// bgr_pair_chroma: each pixel pair's YUV classes see the pair's mean U and V ((a + b + 1) / 2),
+// Y its own; a last odd pixel keeps its own chroma. The fused kernel (all-YUV table) and the
+// plane path (a table with an RGB class too) both, vector bodies and scalar tails.
+TEST(PixelClassifier, PairChromaClassifiesEachPairOnItsMeanChroma) {
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> byte(0, 255);
+  std::vector<ColorClass> yuv_classes;
+  for (int k = 0; k < 4; ++k) {
+    Channels lo, hi;
+    for (int ch = 0; ch < 3; ++ch) {
+      lo[ch] = static_cast<uint8_t>(byte(rng) / 2);
+      hi[ch] = static_cast<uint8_t>(std::min(255, lo[ch] + 40 + byte(rng) / 2));
+    }
+    yuv_classes.push_back(makeClass("y" + std::to_string(k), ColorSpace::YUV, lo, hi));
+  }
+  std::vector<ColorClass> mixed = yuv_classes;
+  mixed.push_back(makeClass("r", ColorSpace::RGB, {{200, 0, 0}}, {{255, 60, 60}}));
+  for (const std::vector<ColorClass>& classes : {yuv_classes, mixed}) {
+    const ColorTable table(classes);
+    for (int width : {64, 70, 33, 1}) {
+      cv::Mat bgr(9, width, CV_8UC3);
+      cv::RNG(width).fill(bgr, cv::RNG::UNIFORM, 0, 256);
+      PixelClassifier classifier;
+      classifier.setBgrPairChroma(true);
+      const cv::Mat labels = classifier.classify(bgr, PixelFormat::BGR8, table);
+      long mismatches = 0, changed = 0;
+      for (int y = 0; y < bgr.rows; ++y) {
+        for (int x = 0; x < width; ++x) {
+          const cv::Vec3b p = bgr.at<cv::Vec3b>(y, x);
+          Channels yuv = yuvFromRgb(p[2], p[1], p[0]);
+          const int mate = x % 2 == 0 ? x + 1 : x - 1;
+          if (mate < width) {
+            const cv::Vec3b q = bgr.at<cv::Vec3b>(y, mate);
+            const Channels other = yuvFromRgb(q[2], q[1], q[0]);
+            for (int ch = 1; ch < 3; ++ch) yuv[ch] = static_cast<uint8_t>((yuv[ch] + other[ch] + 1) >> 1);
+          }
+          int expected = 0;
+          for (int k = static_cast<int>(classes.size()) - 1; k >= 0; --k) {
+            const Channels seen = classes[k].space == ColorSpace::YUV ? yuv : convertBgrPixel(p[0], p[1], p[2], classes[k].space);
+            if (classes[k].contains(seen)) expected = k + 1;
+          }
+          mismatches += labels.at<uint8_t>(y, x) != expected;
+          changed += table.classifyBgr(p[0], p[1], p[2]) != expected;
+        }
+      }
+      EXPECT_EQ(mismatches, 0) << classes.size() << " classes, width " << width;
+      if (width > 1) EXPECT_GT(changed, 0) << "the option changed no label: the test would not see it off";
+      // YUV classes alone (an RGB class reads UYVY through a lossy BGR decode): the labels of
+      // the same frame sent as UYVY, pixel for pixel.
+      if (width % 2 == 0 && classes.size() == yuv_classes.size()) {
+        EXPECT_EQ(cv::countNonZero(labels != classifier.classify(bgrToUyvy(bgr), PixelFormat::UYVY, table)), 0);
+      }
+    }
+  }
+}
+
 TEST(PixelClassifier, Yuv422UsesTheCamerasOwnYuv) {
   const ColorTable table({makeClass("a", ColorSpace::YUV, {{0, 100, 100}}, {{255, 140, 140}}),
                           makeClass("b", ColorSpace::YUV, {{50, 0, 150}}, {{200, 120, 255}}),
