@@ -104,7 +104,7 @@ def tracker_noise_ratios():
                      met(d['noise%s_to_clean_tracker_yuv422_ratio' % sigma], bound),
                      met(d['noise%s_to_clean_tracker_pair_chroma_ratio' % sigma], bound)])
     if d.get('real_ratio_frames', 0) > 0:
-        rows.append(['%d real 608x800 robot frames / clean, per pixel' % d['real_ratio_frames'],
+        rows.append(['%d real robot frames / clean, per pixel' % d['real_ratio_frames'],
                      '%.2fx' % d['real_to_clean_tracker_ratio_per_pixel'],
                      '%.2fx' % d['real_to_clean_tracker_yuv422_ratio_per_pixel'],
                      '%.2fx' % d['real_to_clean_tracker_pair_chroma_ratio_per_pixel']])

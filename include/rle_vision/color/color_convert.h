@@ -23,6 +23,9 @@ constexpr int kDelta = 128 << kShift;
 
 inline uint8_t saturateToByte(int v) { return static_cast<uint8_t>(v < 0 ? 0 : (v > 255 ? 255 : v)); }
 
+// A pixel pair's shared chroma, as 4:2:2 holds it: the mean rounded up (what _mm256_avg_epu8 gives).
+inline uint8_t pairMean(int a, int b) { return static_cast<uint8_t>((a + b + 1) >> 1); }
+
 inline Channels yuvFromRgb(int r, int g, int b) {
   using namespace yuv_fixed_point;
   const int y = (r * kR2Y + g * kG2Y + b * kB2Y + kRound) >> kShift;

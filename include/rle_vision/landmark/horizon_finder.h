@@ -43,7 +43,7 @@ struct HorizonEstimate {
   // The region evidence (with a colour image; each 0..1, 0.5 = no information):
   double separation = 0;       // the two sides' colours are apart (1 - Bhattacharyya coefficient)
   double sky_brighter = 0.5;   // P(a cell above is brighter than one below)
-  double ground_rougher = 0.5; // P(an edge value below exceeds one above)
+  double ground_rougher = 0.5; // P(an edge contrast below exceeds one above), relative to brightness
   double ground_textured = 0;  // share of pixels below above the noise floor
   uint32_t votes = 0, support = 0;  // Hough votes and support of the pieces, or edge points
   int pieces = 0;          // Hough lines merged into it

@@ -18,7 +18,7 @@ namespace rle_vision {
 
 // A BGR copy of an input image for drawing on.
 cv::Mat toDisplayBgr(const cv::Mat& image, PixelFormat format);
-// The same into *bgr, whose buffer is reused when it has the size and type already (4:2:2 frames).
+// The same into *bgr, whose buffer is reused when it has the size and type already.
 void toDisplayBgr(const cv::Mat& image, PixelFormat format, cv::Mat* bgr);
 
 // Blob boxes in their class's display colour, with "id class" labels.

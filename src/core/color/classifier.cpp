@@ -29,7 +29,7 @@ void applyClassBox(const uint8_t* __restrict c0, const uint8_t* __restrict c1,
 
 // Each pixel pair's mean, (a + b + 1) / 2, in both (a last odd pixel keeps its own).
 void averagePairs(uint8_t* plane, int width) {
-  for (int x = 0; x + 1 < width; x += 2) plane[x] = plane[x + 1] = static_cast<uint8_t>((plane[x] + plane[x + 1] + 1) >> 1);
+  for (int x = 0; x + 1 < width; x += 2) plane[x] = plane[x + 1] = pairMean(plane[x], plane[x + 1]);
 }
 
 }  // namespace

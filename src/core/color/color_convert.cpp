@@ -101,9 +101,9 @@ cv::Mat bgrToUyvy(const cv::Mat& bgr) {
       const uint8_t* p0 = s + 6 * pair;
       const Channels a = yuvFromRgb(p0[2], p0[1], p0[0]);
       const Channels b = yuvFromRgb(p0[5], p0[4], p0[3]);
-      d[4 * pair + 0] = static_cast<uint8_t>((a[1] + b[1] + 1) / 2);
+      d[4 * pair + 0] = pairMean(a[1], b[1]);
       d[4 * pair + 1] = a[0];
-      d[4 * pair + 2] = static_cast<uint8_t>((a[2] + b[2] + 1) / 2);
+      d[4 * pair + 2] = pairMean(a[2], b[2]);
       d[4 * pair + 3] = b[0];
     }
   }

@@ -197,7 +197,7 @@ void classifyRowYuvAvx2(const uint8_t* src, int width, bool src_is_rgb, bool pai
     Channels second = yuvFromRgb(p[3 + r_index], p[4], p[5 - r_index]);
     if (pair_chroma) {
       for (int ch = 1; ch < 3; ++ch) {
-        first[ch] = second[ch] = static_cast<uint8_t>((first[ch] + second[ch] + 1) >> 1);
+        first[ch] = second[ch] = pairMean(first[ch], second[ch]);
       }
     }
     labels[x] = labelOf(first, boxes);

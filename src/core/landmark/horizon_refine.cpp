@@ -45,6 +45,12 @@ int relativeContrastBin(uint8_t edge, uint8_t luma) {
   return table.bin[luma][edge];
 }
 
+// The texture samples (every kSampleStride-th column) at pixel columns first..last of a row.
+template <class Visit>
+void forEachSample(int first, int last, Visit&& visit) {
+  for (int i = (first + kSampleStride - 1) / kSampleStride; i * kSampleStride <= last; ++i) visit(i);
+}
+
 // The value below which `percentile` % of a histogram's samples lie.
 double percentileOf(const int* histogram, int total, double percentile) {
   if (total == 0) return 0;
@@ -108,10 +114,10 @@ double HorizonRefiner::threshold(const cv::Mat& edges, const SplitLine& line, do
     const uint8_t* e = sampled_edges_.ptr<uint8_t>(r);
     sideRanges(line, r * kSampleStride, edges.cols, band, [&](int first, int last, bool sky) {
       if (!sky) return;
-      for (int i = (first + kSampleStride - 1) / kSampleStride; i * kSampleStride <= last; ++i) {
+      forEachSample(first, last, [&](int i) {
         ++histogram[e[i]];
         ++samples;
-      }
+      });
     });
   }
   sky_edge_level_ = percentileOf(histogram, samples, o.sky_percentile);
@@ -253,8 +259,15 @@ void HorizonRefiner::sampleTexture(const cv::Mat& edges, const RegionGrid& fine)
   }
 }
 
+void HorizonRefiner::checkSamples(const cv::Mat& edges) const {
+  // The samples are the frame's own: sampleTexture(edges, ...) first, for this edge image.
+  CV_Assert(sampled_edges_.rows == (edges.rows + kSampleStride - 1) / kSampleStride &&
+            sampled_edges_.cols == (edges.cols + kSampleStride - 1) / kSampleStride);
+}
+
 RefinedHorizon HorizonRefiner::refine(const cv::Mat& edges, const RegionGrid& fine, const Hypothesis& h,
                                       const RefineOptions& o) {
+  checkSamples(edges);
   RefinedHorizon out;
   out.line = SplitLine::fromAngleDistance(h.angle_deg, h.centre_distance, edges.cols, edges.rows);
   const double band = o.band_cells * fine.cell();
@@ -333,6 +346,7 @@ double HorizonRefiner::localStep(const RegionGrid& fine, const SplitLine& line, 
 
 Evidence HorizonRefiner::evidence(const cv::Mat& edges, const RegionGrid& fine, const SplitLine& line,
                                   const RefineOptions& o) {
+  checkSamples(edges);
   Evidence e;
   double sky_sums[kMoments], ground_sums[kMoments];
   fine.skySideSums(line, sky_sums);
@@ -369,11 +383,11 @@ Evidence HorizonRefiner::evidence(const cv::Mat& edges, const RegionGrid& fine, 
     sideRanges(line, r * kSampleStride, edges.cols, band, [&](int first, int last, bool sky) {
       int* histogram = sky ? sky_relative : ground_relative;
       int samples = 0, above = 0;
-      for (int i = (first + kSampleStride - 1) / kSampleStride; i * kSampleStride <= last; ++i) {
+      forEachSample(first, last, [&](int i) {
         ++histogram[relative[i]];
         above += edge[i] >= floor_edge;
         ++samples;
-      }
+      });
       (sky ? sky_samples : ground_samples) += samples;
       if (!sky) textured += above;
     });

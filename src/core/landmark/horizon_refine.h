@@ -68,6 +68,7 @@ class HorizonRefiner {
   struct Scan {
     int lo, hi;  // the band's samples on this scanline
   };
+  void checkSamples(const cv::Mat& edges) const;  // throws cv::Exception without sampleTexture(edges)
   double threshold(const cv::Mat& edges, const SplitLine& line, double band, const RefineOptions& o);
   double medianEdgeAtInliers(const cv::Mat& edges, const SplitLine& line, double inlier_px);
   double localStep(const RegionGrid& fine, const SplitLine& line, double noise);

@@ -33,13 +33,13 @@ cv::Scalar rangeCentreBgr(const ColorClass& c) {
 }  // namespace
 
 void toDisplayBgr(const cv::Mat& image, PixelFormat format, cv::Mat* bgr) {
-  // A camera's 4:2:2 is video-range YUV, which OpenCV's decode shows as the camera meant it.
-  if (format == PixelFormat::UYVY) {
-    cv::cvtColor(image, *bgr, cv::COLOR_YUV2BGR_UYVY);
-  } else if (format == PixelFormat::YUYV) {
-    cv::cvtColor(image, *bgr, cv::COLOR_YUV2BGR_YUY2);
-  } else {
-    *bgr = frameToBgr(image, format);
+  switch (format) {
+    case PixelFormat::BGR8: image.copyTo(*bgr); break;
+    case PixelFormat::RGB8: cv::cvtColor(image, *bgr, cv::COLOR_RGB2BGR); break;
+    case PixelFormat::MONO8: cv::cvtColor(image, *bgr, cv::COLOR_GRAY2BGR); break;
+    // A camera's 4:2:2 is video-range YUV, which OpenCV's decode shows as the camera meant it.
+    case PixelFormat::UYVY: cv::cvtColor(image, *bgr, cv::COLOR_YUV2BGR_UYVY); break;
+    case PixelFormat::YUYV: cv::cvtColor(image, *bgr, cv::COLOR_YUV2BGR_YUY2); break;
   }
 }
 

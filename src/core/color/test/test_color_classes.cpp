@@ -243,7 +243,7 @@ TEST(PixelClassifier, PairChromaClassifiesEachPairOnItsMeanChroma) {
           if (mate < width) {
             const cv::Vec3b q = bgr.at<cv::Vec3b>(y, mate);
             const Channels other = yuvFromRgb(q[2], q[1], q[0]);
-            for (int ch = 1; ch < 3; ++ch) yuv[ch] = static_cast<uint8_t>((yuv[ch] + other[ch] + 1) >> 1);
+            for (int ch = 1; ch < 3; ++ch) yuv[ch] = static_cast<uint8_t>((yuv[ch] + other[ch] + 1) / 2);
           }
           int expected = 0;
           for (int k = static_cast<int>(classes.size()) - 1; k >= 0; --k) {
@@ -255,6 +255,9 @@ TEST(PixelClassifier, PairChromaClassifiesEachPairOnItsMeanChroma) {
         }
       }
       EXPECT_EQ(mismatches, 0) << classes.size() << " classes, width " << width;
+      cv::Mat rgb;
+      cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+      EXPECT_EQ(cv::countNonZero(labels != classifier.classify(rgb, PixelFormat::RGB8, table)), 0) << "rgb8, width " << width;
       if (width > 1) EXPECT_GT(changed, 0) << "the option changed no label: the test would not see it off";
       // YUV classes alone (an RGB class reads UYVY through a lossy BGR decode): the labels of
       // the same frame sent as UYVY, pixel for pixel.
