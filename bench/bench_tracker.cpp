@@ -84,6 +84,28 @@ struct BoundedTimes {
   size_t runs_bgr = 0, runs_uyvy = 0, runs_bgr_pair = 0;
 };
 
+// Segment + tracker on one frame, median ms: a fresh tracker, as the node keeps one per stream.
+double trackedMs(const cv::Mat& image, PixelFormat format, const ColorTable& table, const SegmenterOptions& options,
+                 size_t* blobs_out = nullptr) {
+  ColorTracker tracker(options);
+  std::vector<TrackedBlob> blobs;
+  double stamp = 0;
+  const double ms = bench::medianMs([&] {
+    tracker.process(image, format, table, stamp += 1.0 / 30, &blobs);
+    bench::keep(blobs);
+  });
+  if (blobs_out) *blobs_out = blobs.size();
+  return ms;
+}
+
+// The runs the segmenter cuts `image` into.
+size_t runCount(const cv::Mat& image, PixelFormat format, const ColorTable& table, const SegmenterOptions& options) {
+  Segmenter segmenter(options);
+  std::vector<Region> regions;
+  segmenter.segment(image, format, table, &regions);
+  return segmenter.runs().size();
+}
+
 BoundedTimes timeBounded(const cv::Mat& bgr, const std::vector<ColorClass>& classes) {
   const ColorTable table(classes);
   const cv::Mat uyvy = bgrToUyvy(bgr);
@@ -99,18 +121,14 @@ BoundedTimes timeBounded(const cv::Mat& bgr, const std::vector<ColorClass>& clas
     });
     (is_uyvy ? t.regions_uyvy : t.regions_bgr) = regions.size();
     (is_uyvy ? t.runs_uyvy : t.runs_bgr) = segmenter.runs().size();
-    std::vector<TrackedBlob> blobs;
-    double stamp = 0;
-    ColorTracker tracker;
-    (is_uyvy ? t.tracked_uyvy_ms : t.tracked_bgr_ms) = bench::medianMs([&] {
-      tracker.process(image, format, table, stamp += 1.0 / 30, &blobs);
-      bench::keep(blobs);
-    });
-    (is_uyvy ? t.blobs_uyvy : t.blobs_bgr) = blobs.size();
+    (is_uyvy ? t.tracked_uyvy_ms : t.tracked_bgr_ms) =
+        trackedMs(image, format, table, SegmenterOptions(), is_uyvy ? &t.blobs_uyvy : &t.blobs_bgr);
     TrackerOptions every_region;
     every_region.limits.min_track_area_px = 1;
     every_region.limits.max_regions_per_class = UINT32_MAX;
     ColorTracker unbounded(SegmenterOptions(), every_region);
+    std::vector<TrackedBlob> blobs;
+    double stamp = 0;
     (is_uyvy ? t.every_region_uyvy_ms : t.every_region_bgr_ms) = bench::medianMs([&] {
       unbounded.process(image, format, table, stamp += 1.0 / 30, &blobs);
       bench::keep(blobs);
@@ -118,17 +136,8 @@ BoundedTimes timeBounded(const cv::Mat& bgr, const std::vector<ColorClass>& clas
   }
   SegmenterOptions pair_chroma;
   pair_chroma.bgr_pair_chroma = true;
-  ColorTracker paired(pair_chroma);
-  std::vector<TrackedBlob> blobs;
-  double stamp = 0;
-  t.tracked_bgr_pair_ms = bench::medianMs([&] {
-    paired.process(bgr, PixelFormat::BGR8, table, stamp += 1.0 / 30, &blobs);
-    bench::keep(blobs);
-  });
-  Segmenter segmenter(pair_chroma);
-  std::vector<Region> regions;
-  segmenter.segment(bgr, PixelFormat::BGR8, table, &regions);
-  t.runs_bgr_pair = segmenter.runs().size();
+  t.tracked_bgr_pair_ms = trackedMs(bgr, PixelFormat::BGR8, table, pair_chroma);
+  t.runs_bgr_pair = runCount(bgr, PixelFormat::BGR8, table, pair_chroma);
   return t;
 }
 
@@ -188,12 +197,17 @@ NoiseRatios noiseRatios(const BoundedTimes& clean, const cv::Size& clean_size, c
   r.noise25_bgr_pair = noise25.tracked_bgr_pair_ms / clean.tracked_bgr_pair_ms;
   r.noise60_bgr_pair = noise60.tracked_bgr_pair_ms / clean.tracked_bgr_pair_ms;
   const double clean_pixels = static_cast<double>(clean_size.area());
+  const ColorTable table(classes);
+  SegmenterOptions pair_chroma;
+  pair_chroma.bgr_pair_chroma = true;
   for (const cv::Mat& frame : real_frames) {
-    const BoundedTimes t = timeBounded(frame, classes);
-    const double pixels = static_cast<double>(frame.total());
-    r.real_bgr += (t.tracked_bgr_ms / pixels) / (clean.tracked_bgr_ms / clean_pixels) / real_frames.size();
-    r.real_uyvy += (t.tracked_uyvy_ms / pixels) / (clean.tracked_uyvy_ms / clean_pixels) / real_frames.size();
-    r.real_bgr_pair += (t.tracked_bgr_pair_ms / pixels) / (clean.tracked_bgr_pair_ms / clean_pixels) / real_frames.size();
+    const double pixels = static_cast<double>(frame.total()), frames = static_cast<double>(real_frames.size());
+    const double bgr_ms = trackedMs(frame, PixelFormat::BGR8, table, SegmenterOptions());
+    const double uyvy_ms = trackedMs(bgrToUyvy(frame), PixelFormat::UYVY, table, SegmenterOptions());
+    const double pair_ms = trackedMs(frame, PixelFormat::BGR8, table, pair_chroma);
+    r.real_bgr += (bgr_ms / pixels) / (clean.tracked_bgr_ms / clean_pixels) / frames;
+    r.real_uyvy += (uyvy_ms / pixels) / (clean.tracked_uyvy_ms / clean_pixels) / frames;
+    r.real_bgr_pair += (pair_ms / pixels) / (clean.tracked_bgr_pair_ms / clean_pixels) / frames;
   }
   r.real_frames = static_cast<int>(real_frames.size());
   return r;

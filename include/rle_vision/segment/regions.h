@@ -48,7 +48,8 @@ class RegionBuilder {
   void accumulateMoments(std::vector<Run>* runs);
   void emitRegions(const std::vector<Run>& runs, const std::vector<uint32_t>& min_area_by_label,
                    std::vector<Region>* regions);
-  void findBottoms(const std::vector<Run>& runs, std::vector<Region>* regions) const;
+  static void findBottoms(const std::vector<Run>& runs, const std::vector<int32_t>& row_starts,
+                          std::vector<Region>* regions);
 
   struct Moments {
     int64_t area, sum_x, sum_y, sum_xx, sum_yy, sum_xy;
@@ -56,7 +57,7 @@ class RegionBuilder {
   };
   std::vector<int32_t> moment_index_;
   std::vector<Moments> moments_;
-  std::vector<int32_t> region_of_moment_;  // index into the output regions, -1 when dropped
+  std::vector<int32_t> roots_;  // each region's root run, in the order of moments_
   std::vector<uint32_t> region_counts_;
 };
 

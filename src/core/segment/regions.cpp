@@ -1,5 +1,6 @@
 #include "rle_vision/segment/regions.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rle_vision {
@@ -19,13 +20,13 @@ inline double majorAxisAngle(double var_xx, double var_yy, double var_xy) {
 
 }  // namespace
 
-void RegionBuilder::build(std::vector<Run>* runs_ptr, const std::vector<int32_t>& row_starts,
-                          Connectivity connectivity, const std::vector<uint32_t>& min_area_by_label,
-                          std::vector<Region>* regions, Joining joining) {
-  std::vector<Run>& runs = *runs_ptr;
-  regions->clear();
-  const int32_t reach = connectivity == Connectivity::Eight ? 1 : 0;
-  const bool any_label = joining == Joining::kAnyLabel;
+namespace {
+
+// Joins the runs that touch on adjacent rows. Instantiated per connectivity and joining, so
+// that the inner loop, run once per touching pair (tens of thousands on a noisy frame),
+// carries no test of them.
+template <int32_t kReach, bool kAnyLabel>
+void joinTouchingRuns(std::vector<Run>& runs, const std::vector<int32_t>& row_starts) {
   const int rows = static_cast<int>(row_starts.size()) - 1;
   for (int y = 1; y < rows; ++y) {
     int32_t above = row_starts[y - 1];
@@ -33,12 +34,12 @@ void RegionBuilder::build(std::vector<Run>* runs_ptr, const std::vector<int32_t>
     for (int32_t i = row_starts[y]; i < row_starts[y + 1]; ++i) {
       const Run& run = runs[i];
       // Runs above that end left of this one cannot touch it nor any run further right.
-      while (above < above_end && runs[above].x1 + reach < run.x0) ++above;
+      while (above < above_end && runs[above].x1 + kReach < run.x0) ++above;
       // Union by smaller index (a root is its set's first run), with this run's root kept at
       // hand: only the runs above need finding.
       int32_t root = i;
-      for (int32_t j = above; j < above_end && runs[j].x0 <= run.x1 + reach; ++j) {
-        if (!any_label && runs[j].label != run.label) continue;
+      for (int32_t j = above; j < above_end && runs[j].x0 <= run.x1 + kReach; ++j) {
+        if (!kAnyLabel && runs[j].label != run.label) continue;
         const int32_t other = findRoot(runs, j);
         if (other < root) {
           runs[root].parent = other;
@@ -49,9 +50,24 @@ void RegionBuilder::build(std::vector<Run>* runs_ptr, const std::vector<int32_t>
       }
     }
   }
+}
+
+}  // namespace
+
+void RegionBuilder::build(std::vector<Run>* runs_ptr, const std::vector<int32_t>& row_starts,
+                          Connectivity connectivity, const std::vector<uint32_t>& min_area_by_label,
+                          std::vector<Region>* regions, Joining joining) {
+  std::vector<Run>& runs = *runs_ptr;
+  regions->clear();
+  const bool eight = connectivity == Connectivity::Eight, any_label = joining == Joining::kAnyLabel;
+  if (eight) {
+    any_label ? joinTouchingRuns<1, true>(runs, row_starts) : joinTouchingRuns<1, false>(runs, row_starts);
+  } else {
+    any_label ? joinTouchingRuns<0, true>(runs, row_starts) : joinTouchingRuns<0, false>(runs, row_starts);
+  }
   accumulateMoments(&runs);
   emitRegions(runs, min_area_by_label, regions);
-  findBottoms(runs, regions);
+  findBottoms(runs, row_starts, regions);
 }
 
 void RegionBuilder::accumulateMoments(std::vector<Run>* runs_ptr) {
@@ -59,6 +75,7 @@ void RegionBuilder::accumulateMoments(std::vector<Run>* runs_ptr) {
   std::vector<Run>& runs = *runs_ptr;
   moment_index_.resize(runs.size());
   moments_.clear();
+  roots_.clear();
   for (int32_t i = 0; i < static_cast<int32_t>(runs.size()); ++i) {
     const Run& run = runs[i];
     // A parent never has a larger index, and every earlier run already points at its root:
@@ -68,6 +85,7 @@ void RegionBuilder::accumulateMoments(std::vector<Run>* runs_ptr) {
     runs[i].parent = root;  // flatten: callers can read a run's region from its parent
     if (root == i) {
       moment_index_[i] = static_cast<int32_t>(moments_.size());
+      roots_.push_back(i);
       moments_.push_back(Moments{0, 0, 0, 0, 0, 0, run.x0, run.y, run.x1, run.y});
     }
     Moments& m = moments_[moment_index_[root]];
@@ -88,12 +106,12 @@ void RegionBuilder::accumulateMoments(std::vector<Run>* runs_ptr) {
 
 void RegionBuilder::emitRegions(const std::vector<Run>& runs, const std::vector<uint32_t>& min_area_by_label,
                                 std::vector<Region>* regions) {
-  region_of_moment_.assign(moments_.size(), -1);
+  // One step per region (its root), not per run: a noisy frame has thousands of tiny regions.
   region_counts_.clear();
-  for (int32_t i = 0; i < static_cast<int32_t>(runs.size()); ++i) {
-    if (runs[i].parent != i) continue;
-    const Moments& m = moments_[moment_index_[i]];
-    const int label = runs[i].label;
+  for (size_t k = 0; k < moments_.size(); ++k) {
+    const Moments& m = moments_[k];
+    const int32_t root = roots_[k];
+    const int label = runs[root].label;
     if (label >= static_cast<int>(region_counts_.size())) region_counts_.resize(static_cast<size_t>(label) + 1, 0);
     ++region_counts_[label];
     if (label < static_cast<int>(min_area_by_label.size()) &&
@@ -114,26 +132,31 @@ void RegionBuilder::emitRegions(const std::vector<Run>& runs, const std::vector<
     r.var_yy = m.sum_yy * inv - r.cy * r.cy;
     r.var_xy = m.sum_xy * inv - r.cx * r.cy;
     r.angle = majorAxisAngle(r.var_xx, r.var_yy, r.var_xy);
-    r.root_run = i;
+    r.root_run = root;
     r.bottom_at_cx = -1;
-    region_of_moment_[moment_index_[i]] = static_cast<int32_t>(regions->size());
     regions->push_back(r);
   }
 }
 
-void RegionBuilder::findBottoms(const std::vector<Run>& runs, std::vector<Region>* regions) const {
-  // Bottom-up over the runs: the first run of a region covering its centroid's column is the
-  // lowest one there.
-  for (int32_t i = static_cast<int32_t>(runs.size()) - 1; i >= 0; --i) {
-    const int32_t r = region_of_moment_[moment_index_[runs[i].parent]];
-    if (r < 0) continue;
-    Region& region = (*regions)[r];
-    if (region.bottom_at_cx >= 0) continue;
-    const int column = static_cast<int>(std::lround(region.cx));
-    if (runs[i].x0 <= column && column <= runs[i].x1) region.bottom_at_cx = runs[i].y;
-  }
+void RegionBuilder::findBottoms(const std::vector<Run>& runs, const std::vector<int32_t>& row_starts,
+                                std::vector<Region>* regions) {
+  // Per kept region, rows from its bottom up: the first run of the region covering its
+  // centroid's column is the lowest one there. A row's runs are disjoint and ordered by x, so
+  // a binary search finds the one run that may cover the column; the dropped regions (noise)
+  // cost nothing.
   for (Region& region : *regions) {
-    if (region.bottom_at_cx < 0) region.bottom_at_cx = region.bottom;
+    const int column = static_cast<int>(std::lround(region.cx));
+    region.bottom_at_cx = region.bottom;
+    for (int y = region.bottom; y >= region.top; --y) {
+      const auto first = runs.begin() + row_starts[y], last = runs.begin() + row_starts[y + 1];
+      const auto after = std::upper_bound(first, last, column, [](int c, const Run& run) { return c < run.x0; });
+      if (after == first) continue;
+      const Run& run = *(after - 1);
+      if (run.x1 >= column && run.parent == region.root_run) {
+        region.bottom_at_cx = y;
+        break;
+      }
+    }
   }
 }
 
