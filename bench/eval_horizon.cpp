@@ -52,7 +52,9 @@ namespace {
 using namespace rle_vision;
 using eval::HorizonFrame;
 
-constexpr double kL2 = 1.0;  // the model's L2 penalty on standardised weights (fixed, not tuned)
+// The model's L2 penalties on standardised weights tried: each fit chooses one, with its
+// threshold, by cross-validation over the groups it is fitted on.
+constexpr double kL2Choices[] = {0.1, 1, 10, 100, 1000, 10000, 100000};
 const char* const kHeldOut = "ours, model held out (leave one group out)";
 const char* const kShipped = "ours, shipped model (in sample)";
 const char* const kProduct = "ours, evidence product (no model)";
@@ -240,9 +242,9 @@ Detection decide(const FrameData& f, const HorizonModel& model, double min_confi
 }
 
 // The model fitted on the candidates of the frames `use` accepts, each class weighing as much
-// as the other.
+// as the other, with L2 penalty `l2`.
 template <typename Use>
-HorizonModel fitOn(const std::vector<FrameData>& frames, Use use) {
+HorizonModel fitOn(const std::vector<FrameData>& frames, Use use, double l2) {
   std::vector<HorizonFeatures> x;
   std::vector<int> y;
   for (const FrameData& f : frames) {
@@ -256,69 +258,104 @@ HorizonModel fitOn(const std::vector<FrameData>& frames, Use use) {
   const double negatives = static_cast<double>(y.size()) - positives;
   std::vector<double> w(y.size());
   for (size_t i = 0; i < y.size(); ++i) w[i] = 0.5 * y.size() / (y[i] ? std::max(positives, 1.0) : std::max(negatives, 1.0));
-  return fitHorizonModel(x, y, w, kL2);
+  return fitHorizonModel(x, y, w, l2);
 }
 
-// The decision threshold for the frames `use` accepts: each group scored by a model fitted
-// without it (nested inside any outer hold-out), the threshold with the fewest frame errors,
-// horizon frames and frames without one weighing alike (ties: the one nearest 0.5).
+// A frame as an inner fold scored it: its best candidate's probability and whether that
+// candidate is the horizon.
+struct InnerScore {
+  const FrameData* frame;
+  double best;
+  int pass;
+};
+
+// The frames `use` accepts, each group scored by a model (penalty `l2`) fitted without it.
 template <typename Use>
-double chooseThreshold(const std::vector<FrameData>& frames, Use use) {
+std::vector<InnerScore> innerScores(const std::vector<FrameData>& frames, Use use, double l2) {
   std::set<std::string> groups;
   for (const FrameData& f : frames) {
     if (use(f)) groups.insert(f.group);
   }
-  std::vector<std::pair<const FrameData*, double>> scored;  // frame, its best candidate's probability
-  std::vector<int> best_passes;
+  std::vector<InnerScore> scored;
   for (const std::string& g : groups) {
-    const HorizonModel model = fitOn(frames, [&](const FrameData& f) { return use(f) && f.group != g; });
+    const HorizonModel model = fitOn(frames, [&](const FrameData& f) { return use(f) && f.group != g; }, l2);
     for (const FrameData& f : frames) {
       if (!use(f) || f.group != g) continue;
-      double best = 0;
-      int pass = 0;
+      InnerScore s{&f, 0, 0};
       for (size_t i = 0; i < f.candidates.size(); ++i) {
         const double p = model.probability(f.candidates[i].features);
-        if (p > best) best = p, pass = f.candidate_passes[i];
+        if (p > s.best) s.best = p, s.pass = f.candidate_passes[i];
       }
-      scored.push_back({&f, best});
-      best_passes.push_back(pass);
+      scored.push_back(s);
     }
   }
-  double with = 0, without = 0;
-  for (const auto& s : scored) (s.first->has_horizon ? with : without) += 1;
-  double best_t = 0.5, best_cost = INFINITY;
-  for (int k = 1; k < 20; ++k) {
-    const double t = 0.05 * k;
-    double missed = 0, false_found = 0;
-    for (size_t i = 0; i < scored.size(); ++i) {
-      const bool found = scored[i].second >= t;
-      if (scored[i].first->has_horizon) missed += !(found && best_passes[i]);
-      else false_found += found;
-    }
-    const double cost = missed / std::max(with, 1.0) + false_found / std::max(without, 1.0);
-    if (cost < best_cost - 1e-12 || (std::fabs(cost - best_cost) <= 1e-12 && std::fabs(t - 0.5) < std::fabs(best_t - 0.5))) {
-      best_cost = cost;
-      best_t = t;
-    }
-  }
-  return best_t;
+  return scored;
 }
 
-// The model for the frames outside `held_out` ("": every frame), its decision threshold moved
-// into the bias so that it decides at probability 0.5.
-HorizonModel fitWithout(const std::vector<FrameData>& frames, const std::string& held_out) {
+// Frame errors at threshold t, horizon frames and frames without one weighing alike.
+double frameErrorCost(const std::vector<InnerScore>& scored, double t) {
+  double with = 0, without = 0, missed = 0, false_found = 0;
+  for (const InnerScore& s : scored) {
+    const bool found = s.best >= t;
+    if (s.frame->has_horizon) {
+      ++with;
+      missed += !(found && s.pass);
+    } else {
+      ++without;
+      false_found += found;
+    }
+  }
+  return missed / std::max(with, 1.0) + false_found / std::max(without, 1.0);
+}
+
+struct ModelChoice {
+  double l2 = 1, threshold = 0.5;
+};
+
+// The L2 penalty and decision threshold for the frames `use` accepts: each group scored by a
+// model fitted without it (nested inside any outer hold-out), the pair with the fewest frame
+// errors (ties: the stronger penalty, the simpler model; then the threshold nearest 0.5).
+template <typename Use>
+ModelChoice chooseModel(const std::vector<FrameData>& frames, Use use) {
+  ModelChoice best;
+  double best_cost = INFINITY;
+  for (const double l2 : kL2Choices) {
+    const std::vector<InnerScore> scored = innerScores(frames, use, l2);
+    for (int k = 1; k < 20; ++k) {
+      const double t = 0.05 * k, cost = frameErrorCost(scored, t);
+      const bool tie = std::fabs(cost - best_cost) <= 1e-12;
+      if (cost < best_cost - 1e-12 || (tie && l2 > best.l2) ||
+          (tie && l2 == best.l2 && std::fabs(t - 0.5) < std::fabs(best.threshold - 0.5))) {
+        best_cost = cost;
+        best = {l2, t};
+      }
+    }
+  }
+  return best;
+}
+
+// The model for the frames outside `held_out` ("": every frame), its penalty and decision
+// threshold chosen by the inner cross-validation, the threshold moved into the bias so that it
+// decides at probability 0.5.
+HorizonModel fitWithout(const std::vector<FrameData>& frames, const std::string& held_out, ModelChoice* chosen = nullptr) {
   auto use = [&](const FrameData& f) { return held_out.empty() || f.group != held_out; };
-  HorizonModel model = fitOn(frames, use);
-  const double t = chooseThreshold(frames, use);
-  model.bias -= std::log(t / (1 - t));
+  const ModelChoice choice = chooseModel(frames, use);
+  HorizonModel model = fitOn(frames, use, choice.l2);
+  model.bias -= std::log(choice.threshold / (1 - choice.threshold));
+  if (chosen) *chosen = choice;
   return model;
 }
 
 std::map<std::string, HorizonModel> heldOutModels(const std::vector<FrameData>& frames) {
   std::map<std::string, HorizonModel> models;
+  std::printf("held-out models' L2 penalty / threshold, chosen without the group:");
   for (const FrameData& f : frames) {
-    if (!models.count(f.group)) models[f.group] = fitWithout(frames, f.group);
+    if (models.count(f.group)) continue;
+    ModelChoice choice;
+    models[f.group] = fitWithout(frames, f.group, &choice);
+    std::printf(" %s %g/%.2f", f.group.c_str(), choice.l2, choice.threshold);
   }
+  std::printf("\n");
   return models;
 }
 

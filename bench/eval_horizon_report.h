@@ -270,14 +270,17 @@ void report(const EvalArguments& a, const std::vector<FrameData>& frames, const 
 }
 
 void writeModel(const EvalArguments& a, const std::vector<FrameData>& frames) {
-  const HorizonModel model = fitWithout(frames, "");
+  ModelChoice choice;
+  const HorizonModel model = fitWithout(frames, "", &choice);
   std::set<std::string> sets;
   for (const FrameData& f : frames) sets.insert(f.dataset + " (" + std::to_string(std::count_if(frames.begin(), frames.end(),
                                                     [&](const FrameData& g) { return g.dataset == f.dataset; })) + ")");
   std::string provenance =
       "The horizon model of rle_vision (see include/rle_vision/landmark/horizon_model.h): a logistic regression\n"
-      "over the evidence of every candidate line, fitted (L2 " + std::to_string(kL2) + " on standardised weights,\n"
-      "each class weighing as much as the other) by `make train-horizon` on the frames of:\n";
+      "over the evidence of every candidate line, fitted (L2 " + cv::format("%g", choice.l2) +
+      " on standardised weights and threshold " + cv::format("%.2f", choice.threshold) +
+      ", both chosen by leave-one-group-out\n"
+      "cross-validation; each class weighing as much as the other) by `make train-horizon` on the frames of:\n";
   for (const std::string& s : sets) provenance += "  " + s + "\n";
   provenance += "Held-out figures (each flight, date or scene scored by a model fitted without it): make eval.";
   std::ofstream(a.train_output) << horizonModelYaml(model, provenance);

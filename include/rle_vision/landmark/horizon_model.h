@@ -44,8 +44,10 @@ struct HorizonModel {
 
 // Fits a model: L2-regularised logistic regression by Newton's method (IRLS), deterministic.
 // `labels` 1 for candidates that are the horizon; `weights` per sample (e.g. to balance frames
-// with and without a horizon); `l2` on the standardised weights (not the bias). Returns an
-// invalid model when there are no samples of one of the two labels.
+// with and without a horizon); `l2` on the standardised weights (not the bias). The penalty
+// chooses the weights' direction; their scale and the bias are then refitted without it, so the
+// probability stays calibrated under a strong penalty. Returns an invalid model when there are
+// no samples of one of the two labels.
 HorizonModel fitHorizonModel(const std::vector<HorizonFeatures>& features, const std::vector<int>& labels,
                              const std::vector<double>& weights, double l2);
 

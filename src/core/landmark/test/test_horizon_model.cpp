@@ -46,6 +46,18 @@ Samples syntheticSamples() {
   return s;
 }
 
+// Clear evidence either way (two to four standard deviations along the separating features)
+// gets a probability near 1 or near 0.
+void expectConfidentWhereTheEvidenceIsClear(const HorizonModel& m) {
+  HorizonFeatures clear{};
+  clear[kSeparation] = 4;
+  clear[kSkyBrighter] = 2;
+  EXPECT_GT(m.probability(clear), 0.99);
+  clear[kSeparation] = -4;
+  clear[kSkyBrighter] = -2;
+  EXPECT_LT(m.probability(clear), 0.01);
+}
+
 TEST(HorizonModel, FitsTheFeaturesThatSeparateTheClasses) {
   const Samples samples = syntheticSamples();
   const std::vector<HorizonFeatures>& x = samples.x;
@@ -58,17 +70,44 @@ TEST(HorizonModel, FitsTheFeaturesThatSeparateTheClasses) {
   int right = 0;
   for (size_t i = 0; i < x.size(); ++i) right += (m.probability(x[i]) >= 0.5) == (y[i] == 1);
   EXPECT_GT(right, 0.95 * x.size());
-  HorizonFeatures clear{};
-  clear[kSeparation] = 4;
-  clear[kSkyBrighter] = 2;
-  EXPECT_GT(m.probability(clear), 0.99);
-  clear[kSeparation] = -4;
-  clear[kSkyBrighter] = -2;
-  EXPECT_LT(m.probability(clear), 0.01);
+  expectConfidentWhereTheEvidenceIsClear(m);
   // Deterministic: the same data give the same model.
   const HorizonModel again = samples.fit();
   EXPECT_EQ(again.weights, m.weights);
   EXPECT_EQ(again.bias, m.bias);
+}
+
+// The penalty picks the direction; the scale is refitted, so a strong penalty still gives
+// probabilities near 0 and 1 where the evidence is clear (unscaled, they would all sit near 0.5).
+TEST(HorizonModel, AStrongPenaltyKeepsTheProbabilityCalibrated) {
+  const Samples samples = syntheticSamples();
+  const HorizonModel weak = samples.fit();
+  const HorizonModel strong = fitHorizonModel(samples.x, samples.y, samples.w, 1e5);
+  ASSERT_TRUE(strong.valid);
+  expectConfidentWhereTheEvidenceIsClear(strong);
+  int agree = 0;
+  for (const HorizonFeatures& f : samples.x) agree += (weak.probability(f) >= 0.5) == (strong.probability(f) >= 0.5);
+  EXPECT_GT(agree, 0.95 * samples.x.size());
+}
+
+// Classes that one feature separates completely: the refitted scale stays finite (Platt's
+// targets), so the probability is a confidence, not a step from 0 to 1.
+TEST(HorizonModel, SeparableClassesGetAFiniteScale) {
+  Samples samples = syntheticSamples();
+  for (size_t i = 0; i < samples.x.size(); ++i) samples.x[i][kSeparation] = samples.y[i] ? 3.0 : -3.0;
+  const HorizonModel m = samples.fit();
+  ASSERT_TRUE(m.valid);
+  for (double weight : m.weights) EXPECT_LT(std::fabs(weight), 50.0);
+  for (size_t i = 0; i < samples.x.size(); ++i) {
+    const double p = m.probability(samples.x[i]);
+    if (samples.y[i] == 1) {
+      EXPECT_GT(p, 0.9);
+      EXPECT_LT(p, 1.0);
+    } else {
+      EXPECT_LT(p, 0.1);
+      EXPECT_GT(p, 0.0);
+    }
+  }
 }
 
 TEST(HorizonModel, OneClassOnlyOrNoSamplesGiveNoModel) {
