@@ -76,12 +76,32 @@ void printFrame(const char* name, const FrameTimes& t) {
 // tracking size counted, not built; at most max_regions_per_class tracked), and the tracker
 // made to track every region (min_track_area_px 1, no limit), which shows the association's
 // cost growing with the regions, not their square.
+// The segmenter options that change labels for cheaper noisy frames (issue 32), each on its
+// path, measured beside the defaults: `key` names them in tracker.json.
+struct NoiseOption {
+  const char* key;
+  PixelFormat format;
+  SegmenterOptions options;
+};
+
+std::vector<NoiseOption> noiseOptions() {
+  SegmenterOptions pair_chroma, flip_filter, both;
+  pair_chroma.bgr_pair_chroma = true;
+  flip_filter.flip_filter_px = 2;  // 4:2:2 flips come in pixel pairs
+  both.bgr_pair_chroma = true;
+  both.flip_filter_px = 2;
+  return {{"pair_chroma", PixelFormat::BGR8, pair_chroma},
+          {"flip_filter_yuv422", PixelFormat::UYVY, flip_filter},
+          {"pair_chroma_flip_filter", PixelFormat::BGR8, both}};
+}
+
 struct BoundedTimes {
   double segment_bgr_ms = 0, segment_uyvy_ms = 0, tracked_bgr_ms = 0, tracked_uyvy_ms = 0;
   double every_region_bgr_ms = 0, every_region_uyvy_ms = 0;
-  double tracked_bgr_pair_ms = 0;  // bgr8 with bgr_pair_chroma (issue 32)
   size_t regions_bgr = 0, regions_uyvy = 0, blobs_bgr = 0, blobs_uyvy = 0;
-  size_t runs_bgr = 0, runs_uyvy = 0, runs_bgr_pair = 0;
+  size_t runs_bgr = 0, runs_uyvy = 0;
+  std::vector<double> option_ms;  // segment + tracker per noiseOptions()
+  std::vector<size_t> option_runs;
 };
 
 // Segment + tracker on one frame, median ms: a fresh tracker, as the node keeps one per stream.
@@ -134,10 +154,11 @@ BoundedTimes timeBounded(const cv::Mat& bgr, const std::vector<ColorClass>& clas
       bench::keep(blobs);
     }, 40, 5);
   }
-  SegmenterOptions pair_chroma;
-  pair_chroma.bgr_pair_chroma = true;
-  t.tracked_bgr_pair_ms = trackedMs(bgr, PixelFormat::BGR8, table, pair_chroma);
-  t.runs_bgr_pair = runCount(bgr, PixelFormat::BGR8, table, pair_chroma);
+  for (const NoiseOption& option : noiseOptions()) {
+    const cv::Mat& image = option.format == PixelFormat::UYVY ? uyvy : bgr;
+    t.option_ms.push_back(trackedMs(image, option.format, table, option.options));
+    t.option_runs.push_back(runCount(image, option.format, table, option.options));
+  }
   return t;
 }
 
@@ -182,7 +203,7 @@ bool realFrame(const std::string& folder, cv::Mat* frame, std::vector<ColorClass
 // segment + tracker with colors.txt on each path; the real frames per pixel.
 struct NoiseRatios {
   double noise25_bgr = 0, noise25_uyvy = 0, noise60_bgr = 0, noise60_uyvy = 0, real_bgr = 0, real_uyvy = 0;
-  double noise25_bgr_pair = 0, noise60_bgr_pair = 0, real_bgr_pair = 0;
+  std::vector<double> option_noise25, option_noise60, option_real;  // per noiseOptions()
   int real_frames = 0;
 };
 
@@ -194,20 +215,26 @@ NoiseRatios noiseRatios(const BoundedTimes& clean, const cv::Size& clean_size, c
   r.noise25_uyvy = noise25.tracked_uyvy_ms / clean.tracked_uyvy_ms;
   r.noise60_bgr = noise60.tracked_bgr_ms / clean.tracked_bgr_ms;
   r.noise60_uyvy = noise60.tracked_uyvy_ms / clean.tracked_uyvy_ms;
-  r.noise25_bgr_pair = noise25.tracked_bgr_pair_ms / clean.tracked_bgr_pair_ms;
-  r.noise60_bgr_pair = noise60.tracked_bgr_pair_ms / clean.tracked_bgr_pair_ms;
+  const std::vector<NoiseOption> options = noiseOptions();
+  r.option_real.assign(options.size(), 0.0);
+  for (size_t k = 0; k < options.size(); ++k) {
+    r.option_noise25.push_back(noise25.option_ms[k] / clean.option_ms[k]);
+    r.option_noise60.push_back(noise60.option_ms[k] / clean.option_ms[k]);
+  }
   const double clean_pixels = static_cast<double>(clean_size.area());
   const ColorTable table(classes);
-  SegmenterOptions pair_chroma;
-  pair_chroma.bgr_pair_chroma = true;
+  // Time per pixel against the clean frame's, averaged over the frames.
+  auto perPixel = [&](double ms, const cv::Mat& frame, double clean_ms) {
+    return (ms / static_cast<double>(frame.total())) / (clean_ms / clean_pixels) / static_cast<double>(real_frames.size());
+  };
   for (const cv::Mat& frame : real_frames) {
-    const double pixels = static_cast<double>(frame.total()), frames = static_cast<double>(real_frames.size());
-    const double bgr_ms = trackedMs(frame, PixelFormat::BGR8, table, SegmenterOptions());
-    const double uyvy_ms = trackedMs(bgrToUyvy(frame), PixelFormat::UYVY, table, SegmenterOptions());
-    const double pair_ms = trackedMs(frame, PixelFormat::BGR8, table, pair_chroma);
-    r.real_bgr += (bgr_ms / pixels) / (clean.tracked_bgr_ms / clean_pixels) / frames;
-    r.real_uyvy += (uyvy_ms / pixels) / (clean.tracked_uyvy_ms / clean_pixels) / frames;
-    r.real_bgr_pair += (pair_ms / pixels) / (clean.tracked_bgr_pair_ms / clean_pixels) / frames;
+    const cv::Mat uyvy = bgrToUyvy(frame);
+    r.real_bgr += perPixel(trackedMs(frame, PixelFormat::BGR8, table, SegmenterOptions()), frame, clean.tracked_bgr_ms);
+    r.real_uyvy += perPixel(trackedMs(uyvy, PixelFormat::UYVY, table, SegmenterOptions()), frame, clean.tracked_uyvy_ms);
+    for (size_t k = 0; k < options.size(); ++k) {
+      const cv::Mat& image = options[k].format == PixelFormat::UYVY ? uyvy : frame;
+      r.option_real[k] += perPixel(trackedMs(image, options[k].format, table, options[k].options), frame, clean.option_ms[k]);
+    }
   }
   r.real_frames = static_cast<int>(real_frames.size());
   return r;
@@ -228,15 +255,20 @@ std::vector<cv::Mat> firstFrames(const std::string& folder, size_t count) {
 void printNoiseRatios(const BoundedTimes& clean, const NoiseRatios& r) {
   std::printf("  noisy against clean, segment + tracker, colors.txt (clean frame: %.3f ms bgr8, %.3f ms yuv422):\n",
               clean.tracked_bgr_ms, clean.tracked_uyvy_ms);
-  std::printf("    %-42s %6.2f x bgr8 %6.2f x yuv422 %6.2f x bgr8 pair chroma  (targets <= 1.3 x)\n",
-              "noise sigma 25 / clean", r.noise25_bgr, r.noise25_uyvy, r.noise25_bgr_pair);
-  std::printf("    %-42s %6.2f x bgr8 %6.2f x yuv422 %6.2f x bgr8 pair chroma  (targets <= 3 x)\n",
-              "noise sigma 60 / clean", r.noise60_bgr, r.noise60_uyvy, r.noise60_bgr_pair);
+  std::printf("    %-42s %6.2f x bgr8 %6.2f x yuv422  (targets <= 1.3 x)\n", "noise sigma 25 / clean", r.noise25_bgr,
+              r.noise25_uyvy);
+  std::printf("    %-42s %6.2f x bgr8 %6.2f x yuv422  (targets <= 3 x)\n", "noise sigma 60 / clean", r.noise60_bgr,
+              r.noise60_uyvy);
   if (r.real_frames > 0) {
-    std::printf("    %-42s %6.2f x bgr8 %6.2f x yuv422 %6.2f x bgr8 pair chroma  (%d frames, time per pixel)\n",
-                "real robot frames / clean", r.real_bgr, r.real_uyvy, r.real_bgr_pair, r.real_frames);
+    std::printf("    %-42s %6.2f x bgr8 %6.2f x yuv422  (%d frames, time per pixel)\n", "real robot frames / clean",
+                r.real_bgr, r.real_uyvy, r.real_frames);
   }
-  std::printf("    %-42s %8.3f ms bgr8 pair chroma\n", "clean frame", clean.tracked_bgr_pair_ms);
+  const std::vector<NoiseOption> options = noiseOptions();
+  for (size_t k = 0; k < options.size(); ++k) {
+    std::printf("    %-42s %6.2f x sigma 25 %6.2f x sigma 60 %6.2f x real  (clean %.3f ms)\n",
+                (std::string("with ") + options[k].key).c_str(), r.option_noise25[k], r.option_noise60[k],
+                r.option_real[k], clean.option_ms[k]);
+  }
 }
 
 // The tracker loop while colour learning replaces the table: an updater thread on the other CPU
@@ -322,12 +354,15 @@ void addBounded(const std::string& name, const BoundedTimes& t, Values* values) 
                                  {key + "tracker_yuv422_ms", t.tracked_uyvy_ms},
                                  {key + "every_region_ms", t.every_region_bgr_ms},
                                  {key + "every_region_yuv422_ms", t.every_region_uyvy_ms},
-                                 {key + "tracker_pair_chroma_ms", t.tracked_bgr_pair_ms},
                                  {key + "runs", static_cast<double>(t.runs_bgr)},
                                  {key + "runs_yuv422", static_cast<double>(t.runs_uyvy)},
-                                 {key + "runs_pair_chroma", static_cast<double>(t.runs_bgr_pair)},
                                  {key + "regions", static_cast<double>(t.regions_bgr)},
                                  {key + "regions_yuv422", static_cast<double>(t.regions_uyvy)}});
+  const std::vector<NoiseOption> options = noiseOptions();
+  for (size_t k = 0; k < options.size(); ++k) {
+    values->push_back({key + "tracker_" + options[k].key + "_ms", t.option_ms[k]});
+    values->push_back({key + "runs_" + options[k].key, static_cast<double>(t.option_runs[k])});
+  }
 }
 
 void addNoiseRatios(const NoiseRatios& r, Values* values) {
@@ -337,10 +372,14 @@ void addNoiseRatios(const NoiseRatios& r, Values* values) {
                                  {"noise60_to_clean_tracker_yuv422_ratio", r.noise60_uyvy},
                                  {"real_to_clean_tracker_ratio_per_pixel", r.real_bgr},
                                  {"real_to_clean_tracker_yuv422_ratio_per_pixel", r.real_uyvy},
-                                 {"noise25_to_clean_tracker_pair_chroma_ratio", r.noise25_bgr_pair},
-                                 {"noise60_to_clean_tracker_pair_chroma_ratio", r.noise60_bgr_pair},
-                                 {"real_to_clean_tracker_pair_chroma_ratio_per_pixel", r.real_bgr_pair},
                                  {"real_ratio_frames", static_cast<double>(r.real_frames)}});
+  const std::vector<NoiseOption> options = noiseOptions();
+  for (size_t k = 0; k < options.size(); ++k) {
+    const std::string key = options[k].key;
+    values->push_back({"noise25_to_clean_tracker_" + key + "_ratio", r.option_noise25[k]});
+    values->push_back({"noise60_to_clean_tracker_" + key + "_ratio", r.option_noise60[k]});
+    values->push_back({"real_to_clean_tracker_" + key + "_ratio_per_pixel", r.option_real[k]});
+  }
 }
 
 // The clean frame's figures: ours (bgr8, UYVY, with table swaps), OpenCV's, memcpy's.

@@ -98,22 +98,20 @@ def tracker_noise_ratios():
     if 'noise25_to_clean_tracker_ratio' not in d:
         raise KeyError('noise25_to_clean_tracker_ratio (make bench writes it)')
     met = lambda value, bound: '%.3fx (≤ %gx: %s)' % (value, bound, 'met' if value <= bound else '**not met**')  # noqa: E731
+    # The defaults per path, then the options that change labels (bench_tracker.cpp noiseOptions).
+    columns = ['', '_yuv422', '_pair_chroma', '_flip_filter_yuv422', '_pair_chroma_flip_filter']
     rows = []
     for sigma, bound in (('25', 1.3), ('60', 3)):
-        rows.append(['noise σ = %s / clean' % sigma, met(d['noise%s_to_clean_tracker_ratio' % sigma], bound),
-                     met(d['noise%s_to_clean_tracker_yuv422_ratio' % sigma], bound),
-                     met(d['noise%s_to_clean_tracker_pair_chroma_ratio' % sigma], bound)])
+        rows.append(['noise σ = %s / clean' % sigma] +
+                    [met(d['noise%s_to_clean_tracker%s_ratio' % (sigma, c)], bound) for c in columns])
     if d.get('real_ratio_frames', 0) > 0:
-        rows.append(['%d real robot frames / clean, per pixel' % d['real_ratio_frames'],
-                     '%.2fx' % d['real_to_clean_tracker_ratio_per_pixel'],
-                     '%.2fx' % d['real_to_clean_tracker_yuv422_ratio_per_pixel'],
-                     '%.2fx' % d['real_to_clean_tracker_pair_chroma_ratio_per_pixel']])
-    rows.append(['clean frame (the ratios\' base)', ms(d['bounded_clean_tracker_ms'], 3),
-                 ms(d['bounded_clean_tracker_yuv422_ms'], 3), ms(d['bounded_clean_tracker_pair_chroma_ms'], 3)])
-    rows.append(['runs, σ = 25 / σ = 60', '%d / %d' % (d['bounded_noise25_runs'], d['bounded_noise60_runs']),
-                 '%d / %d' % (d['bounded_noise25_runs_yuv422'], d['bounded_noise60_runs_yuv422']),
-                 '%d / %d' % (d['bounded_noise25_runs_pair_chroma'], d['bounded_noise60_runs_pair_chroma'])])
-    return (table(['segment + tracker, `colors.txt`', 'bgr8', 'yuv422 (UYVY)', 'bgr8, `bgr_pair_chroma`'], rows) +
+        rows.append(['%d real robot frames / clean, per pixel' % d['real_ratio_frames']] +
+                    ['%.2fx' % d['real_to_clean_tracker%s_ratio_per_pixel' % c] for c in columns])
+    rows.append(['clean frame (the ratios\' base)'] + [ms(d['bounded_clean_tracker%s_ms' % c], 3) for c in columns])
+    rows.append(['runs, σ = 25 / σ = 60'] + ['%d / %d' % (d['bounded_noise25_runs%s' % r], d['bounded_noise60_runs%s' % r])
+                                              for r in columns])
+    return (table(['segment + tracker, `colors.txt`', 'bgr8', 'yuv422 (UYVY)', 'bgr8, `bgr_pair_chroma`',
+                   'yuv422, `flip_filter_px` 2', 'bgr8, `bgr_pair_chroma` + `flip_filter_px` 2'], rows) +
             '\n\n' + provenance('make bench', 'tracker', d))
 
 

@@ -18,8 +18,11 @@ struct Run {
 };
 
 // Appends the runs of one row of labels (label 0 is background and produces no run).
-// Runs are appended left to right with parent = their own index.
-void appendRowRuns(const uint8_t* labels, int width, int y, std::vector<Run>* runs);
+// Runs are appended left to right with parent = their own index. With max_flip_px > 0, a
+// stretch of at most that many pixels of one label between two stretches of another one label
+// (background included) takes their label, left to right: a noisy pixel neither cuts a run nor
+// makes a speck. The first and last stretch of a row are kept as they are.
+void appendRowRuns(const uint8_t* labels, int width, int y, std::vector<Run>* runs, int max_flip_px = 0);
 
 // Run-length encodes a whole CV_8UC1 label image given as rows: fills `runs` (row-major order)
 // and `row_starts` (size rows + 1; the runs of row y are [row_starts[y], row_starts[y + 1])).

@@ -14,8 +14,8 @@
 
 namespace rle_vision {
 
-// connectivity, min_area_px (a floor applied to every class on top of its own min_area_px) and
-// bgr_pair_chroma: the SEGMENTER group of tracker_params.def, with their defaults and meanings.
+// connectivity, min_area_px (a floor applied to every class on top of its own min_area_px),
+// bgr_pair_chroma and flip_filter_px: the SEGMENTER group of tracker_params.def, with their defaults and meanings.
 struct SegmenterOptions {
 #define RLE_SEGMENTER_PARAM(key, member, type, default_value, min, max, description) \
   type member = static_cast<type>(default_value);

@@ -1,5 +1,6 @@
 #include "rle_vision/segment/run_length.h"
 
+#include <algorithm>
 #include <cstring>
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(RLE_VISION_NO_MULTIVERSION)
@@ -13,9 +14,13 @@ namespace {
 // Runs are found from their ends: a run ends where a label differs from the one before it.
 // Finding those places many labels at a time costs one step per run, not one branch per pixel,
 // which matters on noisy frames (thousands of short runs) and costs little on clean ones.
+// With a flip filter, the row's segments (background included) wait in a queue of three: a
+// middle one of at most max_flip_px pixels between two of one label joins them, so a noisy
+// pixel neither cuts a run nor makes a speck.
 class RowRuns {
  public:
-  RowRuns(const uint8_t* labels, int y, std::vector<Run>* runs) : labels_(labels), y_(y), runs_(runs), label_(labels[0]) {}
+  RowRuns(const uint8_t* labels, int y, int max_flip_px, std::vector<Run>* runs)
+      : labels_(labels), y_(y), max_flip_px_(max_flip_px), runs_(runs), label_(labels[0]) {}
 
   // A run of another label starts at x.
   void startAt(int x) {
@@ -24,18 +29,49 @@ class RowRuns {
     label_ = labels_[x];
   }
   // The row ends at `width`.
-  void finish(int width) { close(width); }
+  void finish(int width) {
+    close(width);
+    for (int k = 0; k < pending_count_; ++k) emit(pending_[k]);
+  }
 
  private:
+  struct Segment {
+    int x0, x1;
+    uint8_t label;
+  };
+
   void close(int end) {
-    if (label_ != 0) runs_->push_back(Run{start_, end - 1, y_, static_cast<int32_t>(runs_->size()), label_});
+    const Segment segment{start_, end - 1, label_};
+    if (max_flip_px_ == 0) {
+      emit(segment);
+      return;
+    }
+    pending_[pending_count_++] = segment;
+    if (pending_count_ < 3) return;
+    // Neighbouring segments always differ in label, so the middle one is a flip exactly when
+    // the outer two agree.
+    if (pending_[1].x1 - pending_[1].x0 < max_flip_px_ && pending_[0].label == pending_[2].label) {
+      pending_[0].x1 = pending_[2].x1;
+      pending_count_ = 1;
+    } else {
+      emit(pending_[0]);
+      pending_[0] = pending_[1];
+      pending_[1] = pending_[2];
+      pending_count_ = 2;
+    }
+  }
+  void emit(const Segment& s) {
+    if (s.label != 0) runs_->push_back(Run{s.x0, s.x1, y_, static_cast<int32_t>(runs_->size()), s.label});
   }
 
   const uint8_t* labels_;
   int y_;
+  int max_flip_px_;
   std::vector<Run>* runs_;
   int start_ = 0;
   uint8_t label_;
+  Segment pending_[3];
+  int pending_count_ = 0;
 };
 
 // From x on, 8 labels at a time: the XOR of a word with the word one label earlier is
@@ -79,9 +115,9 @@ __attribute__((target("avx2"))) int scanAvx2(const uint8_t* labels, int width, i
 
 }  // namespace
 
-void appendRowRuns(const uint8_t* labels, int width, int y, std::vector<Run>* runs) {
+void appendRowRuns(const uint8_t* labels, int width, int y, std::vector<Run>* runs, int max_flip_px) {
   if (width <= 0) return;
-  RowRuns row(labels, y, runs);
+  RowRuns row(labels, y, std::max(max_flip_px, 0), runs);
   int x = 1;
 #ifdef RLE_VISION_HAVE_AVX2_RLE
   if (avx2Available()) x = scanAvx2(labels, width, x, &row);

@@ -1,6 +1,7 @@
 // Whole-frame segmentation against exact ground truth.
 #include <algorithm>
 #include <cstdio>
+#include <numeric>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -152,6 +153,43 @@ TEST_F(SimulatedScene, FourConnectivityNeverMergesMoreThanEight) {
   segmenter.setOptions(SegmenterOptions{Connectivity::Eight, 1});
   segmenter.segment(f.image, PixelFormat::BGR8, *table_, &eight);
   EXPECT_GE(four.size(), eight.size());
+}
+
+// Heavy sensor noise on a UYVY frame: with flip_filter_px 2 (4:2:2 flips come in pixel pairs)
+// every box is still its blob, larger than without the filter (the holes filled), while the
+// runs and the specks the noise made mostly go.
+TEST_F(SimulatedScene, FlipFilterKeepsTheBoxesAndDropsTheNoise) {
+  scene_.noise_sigma = 40;
+  const SimFrame f = SceneSimulator(scene_).render(0, 0.0);
+  const cv::Mat uyvy = bgrToUyvy(f.image);
+  SegmenterOptions filter;
+  filter.flip_filter_px = 2;
+  Segmenter plain, filtered(filter);
+  std::vector<Region> plain_regions, regions;
+  plain.segment(uyvy, PixelFormat::UYVY, *table_, &plain_regions);
+  filtered.segment(uyvy, PixelFormat::UYVY, *table_, &regions);
+  auto total = [](const std::vector<uint32_t>& counts) { return std::accumulate(counts.begin(), counts.end(), 0u); };
+  std::printf("[ flip filter ] noise sigma 40, UYVY: runs %zu -> %zu, regions of any size %u -> %u\n",
+              plain.runs().size(), filtered.runs().size(), total(plain.regionCounts()), total(filtered.regionCounts()));
+  EXPECT_LT(filtered.runs().size() * 2, plain.runs().size());
+  EXPECT_LT(total(filtered.regionCounts()) * 2, total(plain.regionCounts()));
+  int boxes = 0;
+  for (const BoxTruth& box : test::isolatedBoxes(f, *table_)) {
+    // Solid boxes only: a part at most two pixels wide (a thin post) is what the filter removes.
+    const double bounding = (box.right - box.left + 1.0) * (box.bottom - box.top + 1.0);
+    if (box.area < 400 || box.area < 0.7 * bounding) continue;
+    const Region* r = regionOfBox(regions, *table_, box, 2.0);
+    const Region* unfiltered = regionOfBox(plain_regions, *table_, box, 2.0);
+    ASSERT_NE(r, nullptr) << box.name;
+    ASSERT_NE(unfiltered, nullptr) << box.name;
+    // Noise this strong takes pixels out of the class; the filter gives the isolated ones back
+    // and adds none from outside the box.
+    const double perimeter = 2.0 * ((box.right - box.left + 1) + (box.bottom - box.top + 1));
+    EXPECT_GT(r->area, unfiltered->area) << box.name;
+    EXPECT_LE(r->area, box.area + perimeter) << box.name;
+    ++boxes;
+  }
+  EXPECT_GT(boxes, 3);
 }
 
 TEST(Segmenter, BadImagesThrowWithTheReason) {

@@ -1,0 +1,148 @@
+// The run-length encoder's flip filter (flip_filter_px): short stretches between two of one
+// label take that label, so sensor noise neither cuts runs nor makes specks.
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "rle_vision/segment/regions.h"
+#include "rle_vision/segment/run_length.h"
+
+namespace rle_vision {
+namespace {
+
+struct Stretch {
+  int x0, x1;
+  uint8_t label;
+};
+
+// The filter written plainly on the row's stretches: the first stretch that is short and lies
+// between two of one label merges with them, then the search goes on from the merged one.
+std::vector<rle_vision::Run> referenceFilteredRuns(const std::vector<uint8_t>& row, int y, int max_flip_px) {
+  std::vector<Stretch> stretches;
+  for (int x = 0; x < static_cast<int>(row.size()); ++x) {
+    if (x == 0 || row[x] != row[x - 1]) stretches.push_back({x, x, row[x]});
+    stretches.back().x1 = x;
+  }
+  for (size_t i = 1; i + 1 < stretches.size();) {
+    const Stretch& middle = stretches[i];
+    if (middle.x1 - middle.x0 + 1 <= max_flip_px && stretches[i - 1].label == stretches[i + 1].label) {
+      stretches[i - 1].x1 = stretches[i + 1].x1;
+      stretches.erase(stretches.begin() + static_cast<long>(i), stretches.begin() + static_cast<long>(i) + 2);
+    } else {
+      ++i;
+    }
+  }
+  std::vector<rle_vision::Run> runs;
+  for (const Stretch& s : stretches) {
+    if (s.label != 0) runs.push_back(rle_vision::Run{s.x0, s.x1, y, static_cast<int32_t>(runs.size()), s.label});
+  }
+  return runs;
+}
+
+void expectRuns(const std::vector<rle_vision::Run>& runs, const std::vector<Stretch>& expected) {
+  ASSERT_EQ(runs.size(), expected.size());
+  for (size_t i = 0; i < runs.size(); ++i) {
+    EXPECT_EQ(runs[i].x0, expected[i].x0) << "run " << i;
+    EXPECT_EQ(runs[i].x1, expected[i].x1) << "run " << i;
+    EXPECT_EQ(runs[i].label, expected[i].label) << "run " << i;
+    EXPECT_EQ(runs[i].parent, static_cast<int32_t>(i));
+  }
+}
+
+TEST(FlipFilter, FillsShortStretchesBetweenTwoOfOneLabel) {
+  //                           0  1  2  3  4  5  6  7  8  9 10 11 12 13 14 15 16
+  const std::vector<uint8_t> row{1, 1, 1, 0, 1, 1, 2, 2, 0, 0, 0, 3, 0, 0, 0, 1, 1};
+  std::vector<rle_vision::Run> runs;
+  appendRowRuns(row.data(), static_cast<int>(row.size()), 2, &runs, 1);
+  // The background pixel inside the 1s is filled, the speck of 3 dropped, the 2s (between a 1
+  // and background) and the row's last stretch kept.
+  expectRuns(runs, {{0, 5, 1}, {6, 7, 2}, {15, 16, 1}});
+  runs.clear();
+  appendRowRuns(row.data(), static_cast<int>(row.size()), 2, &runs, 0);
+  EXPECT_EQ(runs.size(), 5u);  // off: every labelled stretch is a run
+
+  const std::vector<uint8_t> pair{2, 2, 2, 1, 1, 2, 2, 2, 0, 0, 0};
+  runs.clear();
+  appendRowRuns(pair.data(), static_cast<int>(pair.size()), 0, &runs, 1);
+  expectRuns(runs, {{0, 2, 2}, {3, 4, 1}, {5, 7, 2}});
+  runs.clear();
+  appendRowRuns(pair.data(), static_cast<int>(pair.size()), 0, &runs, 2);  // 4:2:2 flips come in pairs
+  expectRuns(runs, {{0, 7, 2}});
+}
+
+TEST(FlipFilter, EqualsThePlainFilterOnRandomRows) {
+  std::mt19937 rng(11);
+  for (int width : {1, 2, 3, 7, 8, 9, 31, 32, 33, 63, 64, 65, 100, 640}) {
+    for (int change_per_mille : {0, 100, 400, 1000}) {
+      for (int max_flip_px : {1, 2, 3}) {
+        std::vector<uint8_t> row(width);
+        for (int x = 0; x < width; ++x) {
+          const bool change = x == 0 || static_cast<int>(rng() % 1000) < change_per_mille;
+          row[x] = change ? static_cast<uint8_t>(rng() % 3) : row[x - 1];
+        }
+        std::vector<rle_vision::Run> runs;
+        appendRowRuns(row.data(), width, 5, &runs, max_flip_px);
+        const std::vector<rle_vision::Run> expected = referenceFilteredRuns(row, 5, max_flip_px);
+        ASSERT_EQ(runs.size(), expected.size()) << "width " << width << " flip " << max_flip_px;
+        for (size_t i = 0; i < runs.size(); ++i) {
+          ASSERT_EQ(runs[i].x0, expected[i].x0) << "width " << width << " run " << i;
+          ASSERT_EQ(runs[i].x1, expected[i].x1);
+          ASSERT_EQ(runs[i].label, expected[i].label);
+          ASSERT_EQ(runs[i].y, 5);
+        }
+      }
+    }
+  }
+}
+
+// A ball (label 1) on background, with salt of another class around it and single-pixel holes
+// in it, none two in a row and none next to the ball's edge (there the ball's last pixel would
+// itself be a short stretch, between background and the hole, and go first): filtered, the ball
+// is one region, exactly the clean ball filtered, and nothing else is left; unfiltered, the salt
+// and holes make hundreds of regions.
+TEST(FlipFilter, SaltAndHolesLeaveOneExactRegion) {
+  cv::Mat clean = cv::Mat::zeros(120, 160, CV_8UC1);
+  cv::circle(clean, {80, 60}, 30, cv::Scalar(1), cv::FILLED);
+  cv::Mat noisy = clean.clone();
+  std::mt19937 rng(5);
+  for (int y = 0; y < noisy.rows; ++y) {
+    for (int x = 2; x + 2 < noisy.cols; x += 3) {  // every third pixel at most: no two in a row
+      if (rng() % 4 != 0) continue;
+      uint8_t& p = noisy.at<uint8_t>(y, x);
+      const bool inside = clean.at<uint8_t>(y, x - 2) == 1 && clean.at<uint8_t>(y, x + 2) == 1;
+      const bool outside = clean.at<uint8_t>(y, x - 1) == 0 && clean.at<uint8_t>(y, x + 1) == 0;
+      if (inside) p = 0;
+      if (outside) p = 2;
+    }
+  }
+  auto regionsOf = [](const cv::Mat& labels, int max_flip_px) {
+    std::vector<rle_vision::Run> runs;
+    std::vector<int32_t> row_starts;
+    for (int y = 0; y < labels.rows; ++y) {
+      row_starts.push_back(static_cast<int32_t>(runs.size()));
+      appendRowRuns(labels.ptr<uint8_t>(y), labels.cols, y, &runs, max_flip_px);
+    }
+    row_starts.push_back(static_cast<int32_t>(runs.size()));
+    RegionBuilder builder;
+    std::vector<Region> regions;
+    builder.build(&runs, row_starts, Connectivity::Eight, {}, &regions);
+    return regions;
+  };
+  const std::vector<Region> filtered = regionsOf(noisy, 1);
+  ASSERT_EQ(filtered.size(), 1u);
+  EXPECT_EQ(filtered[0].label, 1);
+  // Exactly the clean ball filtered: that loses only the circle's one-pixel tips, top and bottom.
+  const std::vector<Region> clean_filtered = regionsOf(clean, 1);
+  ASSERT_EQ(clean_filtered.size(), 1u);
+  EXPECT_EQ(filtered[0].area, clean_filtered[0].area);
+  EXPECT_EQ(filtered[0].area + 2, static_cast<uint32_t>(cv::countNonZero(clean)));
+  EXPECT_NEAR(filtered[0].cx, 80.0, 1e-9);
+  EXPECT_NEAR(filtered[0].cy, 60.0, 1e-9);
+  EXPECT_GT(regionsOf(noisy, 0).size(), 100u);
+}
+
+}  // namespace
+}  // namespace rle_vision
