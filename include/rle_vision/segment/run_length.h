@@ -21,7 +21,8 @@ struct Run {
 // Runs are appended left to right with parent = their own index. With max_flip_px > 0, a
 // stretch of at most that many pixels of one label between two stretches of another one label
 // (background included) takes their label, left to right: a noisy pixel neither cuts a run nor
-// makes a speck. The first and last stretch of a row are kept as they are.
+// makes a speck. The first and last stretch of a row are never relabelled (they have one
+// neighbour), though the first may grow by the flips after it.
 void appendRowRuns(const uint8_t* labels, int width, int y, std::vector<Run>* runs, int max_flip_px = 0);
 
 // Run-length encodes a whole CV_8UC1 label image given as rows: fills `runs` (row-major order)

@@ -39,8 +39,10 @@ void standardisation(const std::vector<HorizonFeatures>& x, const std::vector<do
 // maximise the weighted likelihood of sigmoid(a z + c), unpenalised: two parameters, by Newton's
 // method. The penalty picks the direction of the weights; this keeps the probability calibrated
 // however strongly it shrank them. The targets are Platt's, (n1 + 1) / (n1 + 2) and 1 / (n0 + 2)
-// rather than 1 and 0, so a direction that separates the training samples gets a finite scale.
-// False when the scores do not vary.
+// rather than 1 and 0, so a direction that separates the training samples gets a finite scale;
+// n1 and n0 count samples, not their weights: how sure the number of examples lets us be. Starts
+// from the penalised fit: a = 1 and c as it comes in (that fit's bias). False when the scores do
+// not vary.
 bool calibrateScale(const Eigen::VectorXd& z, const std::vector<int>& y, const std::vector<double>& w, double* a,
                     double* c) {
   if (z.size() == 0 || z.maxCoeff() - z.minCoeff() < 1e-12) return false;
@@ -57,7 +59,7 @@ bool calibrateScale(const Eigen::VectorXd& z, const std::vector<int>& y, const s
     }
     return sum;
   };
-  Eigen::Vector2d theta(1, 0);
+  Eigen::Vector2d theta(1, *c);
   double current = loss(theta);
   for (int step = 0; step < kNewtonSteps; ++step) {
     Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
@@ -79,7 +81,7 @@ bool calibrateScale(const Eigen::VectorXd& z, const std::vector<int>& y, const s
     if (!(next <= current)) break;
     theta += delta;
     current = next;
-    if (delta.cwiseAbs().maxCoeff() < 1e-9) break;
+    if (delta.cwiseAbs().maxCoeff() < 1e-9 * (1 + theta.cwiseAbs().maxCoeff())) break;
   }
   *a = theta(0);
   *c = theta(1);

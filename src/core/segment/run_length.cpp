@@ -14,7 +14,7 @@ namespace {
 // Runs are found from their ends: a run ends where a label differs from the one before it.
 // Finding those places many labels at a time costs one step per run, not one branch per pixel,
 // which matters on noisy frames (thousands of short runs) and costs little on clean ones.
-// With a flip filter, the row's segments (background included) wait in a queue of three: a
+// With a flip filter, the row's stretches (background included) wait in a queue of three: a
 // middle one of at most max_flip_px pixels between two of one label joins them, so a noisy
 // pixel neither cuts a run nor makes a speck.
 class RowRuns {
@@ -35,20 +35,20 @@ class RowRuns {
   }
 
  private:
-  struct Segment {
+  struct Stretch {
     int x0, x1;
     uint8_t label;
   };
 
   void close(int end) {
-    const Segment segment{start_, end - 1, label_};
+    const Stretch stretch{start_, end - 1, label_};
     if (max_flip_px_ == 0) {
-      emit(segment);
+      emit(stretch);
       return;
     }
-    pending_[pending_count_++] = segment;
+    pending_[pending_count_++] = stretch;
     if (pending_count_ < 3) return;
-    // Neighbouring segments always differ in label, so the middle one is a flip exactly when
+    // Neighbouring stretches always differ in label, so the middle one is a flip exactly when
     // the outer two agree.
     if (pending_[1].x1 - pending_[1].x0 < max_flip_px_ && pending_[0].label == pending_[2].label) {
       pending_[0].x1 = pending_[2].x1;
@@ -60,7 +60,7 @@ class RowRuns {
       pending_count_ = 2;
     }
   }
-  void emit(const Segment& s) {
+  void emit(const Stretch& s) {
     if (s.label != 0) runs_->push_back(Run{s.x0, s.x1, y_, static_cast<int32_t>(runs_->size()), s.label});
   }
 
@@ -70,7 +70,7 @@ class RowRuns {
   std::vector<Run>* runs_;
   int start_ = 0;
   uint8_t label_;
-  Segment pending_[3];
+  Stretch pending_[3];
   int pending_count_ = 0;
 };
 

@@ -91,23 +91,24 @@ TEST(HorizonModel, AStrongPenaltyKeepsTheProbabilityCalibrated) {
 }
 
 // Classes that one feature separates completely: the refitted scale stays finite (Platt's
-// targets), so the probability is a confidence, not a step from 0 to 1.
+// targets), so the probability is a confidence, not a step from 0 to 1. At the optimum the mean
+// probability of each class is its target, (200 + 1) / (200 + 2) and 1 / (200 + 2): without the
+// targets the scale would grow without bound and the means reach 1 and 0.
 TEST(HorizonModel, SeparableClassesGetAFiniteScale) {
   Samples samples = syntheticSamples();
   for (size_t i = 0; i < samples.x.size(); ++i) samples.x[i][kSeparation] = samples.y[i] ? 3.0 : -3.0;
   const HorizonModel m = samples.fit();
   ASSERT_TRUE(m.valid);
-  for (double weight : m.weights) EXPECT_LT(std::fabs(weight), 50.0);
+  for (double weight : m.weights) EXPECT_LT(std::fabs(weight), 20.0);
+  double positive_mean = 0, negative_mean = 0;
   for (size_t i = 0; i < samples.x.size(); ++i) {
     const double p = m.probability(samples.x[i]);
-    if (samples.y[i] == 1) {
-      EXPECT_GT(p, 0.9);
-      EXPECT_LT(p, 1.0);
-    } else {
-      EXPECT_LT(p, 0.1);
-      EXPECT_GT(p, 0.0);
-    }
+    (samples.y[i] == 1 ? positive_mean : negative_mean) += p / 200;
+    if (samples.y[i] == 1) EXPECT_GT(p, 0.9);
+    if (samples.y[i] == 0) EXPECT_LT(p, 0.1);
   }
+  EXPECT_NEAR(positive_mean, 201.0 / 202, 2e-3);
+  EXPECT_NEAR(negative_mean, 1.0 / 202, 2e-3);
 }
 
 TEST(HorizonModel, OneClassOnlyOrNoSamplesGiveNoModel) {

@@ -64,6 +64,12 @@ TEST(FlipFilter, FillsShortStretchesBetweenTwoOfOneLabel) {
   appendRowRuns(row.data(), static_cast<int>(row.size()), 2, &runs, 0);
   EXPECT_EQ(runs.size(), 5u);  // off: every labelled stretch is a run
 
+  // A row's first and last stretches have one neighbour only: never relabelled, however short.
+  const std::vector<uint8_t> ends{3, 0, 0, 0, 1, 0, 0, 2};
+  runs.clear();
+  appendRowRuns(ends.data(), static_cast<int>(ends.size()), 2, &runs, 1);
+  expectRuns(runs, {{0, 0, 3}, {7, 7, 2}});
+
   const std::vector<uint8_t> pair{2, 2, 2, 1, 1, 2, 2, 2, 0, 0, 0};
   runs.clear();
   appendRowRuns(pair.data(), static_cast<int>(pair.size()), 0, &runs, 1);
@@ -83,15 +89,18 @@ TEST(FlipFilter, EqualsThePlainFilterOnRandomRows) {
           const bool change = x == 0 || static_cast<int>(rng() % 1000) < change_per_mille;
           row[x] = change ? static_cast<uint8_t>(rng() % 3) : row[x - 1];
         }
-        std::vector<rle_vision::Run> runs;
+        // Appended after the runs of earlier rows: each run's parent is its own index.
+        std::vector<rle_vision::Run> runs(3, rle_vision::Run{0, 0, 4, 0, 1});
         appendRowRuns(row.data(), width, 5, &runs, max_flip_px);
         const std::vector<rle_vision::Run> expected = referenceFilteredRuns(row, 5, max_flip_px);
-        ASSERT_EQ(runs.size(), expected.size()) << "width " << width << " flip " << max_flip_px;
-        for (size_t i = 0; i < runs.size(); ++i) {
-          ASSERT_EQ(runs[i].x0, expected[i].x0) << "width " << width << " run " << i;
-          ASSERT_EQ(runs[i].x1, expected[i].x1);
-          ASSERT_EQ(runs[i].label, expected[i].label);
-          ASSERT_EQ(runs[i].y, 5);
+        ASSERT_EQ(runs.size(), expected.size() + 3) << "width " << width << " flip " << max_flip_px;
+        for (size_t i = 0; i < expected.size(); ++i) {
+          const rle_vision::Run& run = runs[i + 3];
+          ASSERT_EQ(run.x0, expected[i].x0) << "width " << width << " run " << i;
+          ASSERT_EQ(run.x1, expected[i].x1);
+          ASSERT_EQ(run.label, expected[i].label);
+          ASSERT_EQ(run.y, 5);
+          ASSERT_EQ(run.parent, static_cast<int32_t>(i + 3));
         }
       }
     }

@@ -183,7 +183,7 @@ TEST_F(SimulatedScene, FlipFilterKeepsTheBoxesAndDropsTheNoise) {
     ASSERT_NE(r, nullptr) << box.name;
     ASSERT_NE(unfiltered, nullptr) << box.name;
     // Noise this strong takes pixels out of the class; the filter gives the isolated ones back
-    // and adds none from outside the box.
+    // and the blob grows no more than a pixel of boundary all round.
     const double perimeter = 2.0 * ((box.right - box.left + 1) + (box.bottom - box.top + 1));
     EXPECT_GT(r->area, unfiltered->area) << box.name;
     EXPECT_LE(r->area, box.area + perimeter) << box.name;
