@@ -70,18 +70,15 @@ void printFrame(const char* name, const FrameTimes& t) {
   std::printf("  %-44s %8.3f ms\n", (std::string(name) + ", OpenCV pipeline").c_str(), t.opencv_ms);
 }
 
-// A bad frame's cost (issue 18), with CMVision's thresholds (config/colors.txt: every class
-// down to 1 px, so every speck is a region): segmentation alone (every region built, as
-// CMVision builds them), what the Tracker nodelet runs (ColorTracker: regions under the
-// tracking size counted, not built; at most max_regions_per_class tracked), and the tracker
-// made to track every region (min_track_area_px 1, no limit), which shows the association's
-// cost growing with the regions, not their square.
 // The segmenter options that change labels for cheaper noisy frames (issue 32), each on its
 // path, measured beside the defaults: `key` names them in tracker.json.
 struct NoiseOption {
   const char* key;
   PixelFormat format;
   SegmenterOptions options;
+
+  // The frame as this option's path takes it.
+  const cv::Mat& frame(const cv::Mat& bgr, const cv::Mat& uyvy) const { return format == PixelFormat::UYVY ? uyvy : bgr; }
 };
 
 std::vector<NoiseOption> noiseOptions() {
@@ -95,6 +92,12 @@ std::vector<NoiseOption> noiseOptions() {
           {"pair_chroma_flip_filter", PixelFormat::BGR8, both}};
 }
 
+// A bad frame's cost (issue 18), with CMVision's thresholds (config/colors.txt: every class
+// down to 1 px, so every speck is a region): segmentation alone (every region built, as
+// CMVision builds them), what the Tracker nodelet runs (ColorTracker: regions under the
+// tracking size counted, not built; at most max_regions_per_class tracked), and the tracker
+// made to track every region (min_track_area_px 1, no limit), which shows the association's
+// cost growing with the regions, not their square.
 struct BoundedTimes {
   double segment_bgr_ms = 0, segment_uyvy_ms = 0, tracked_bgr_ms = 0, tracked_uyvy_ms = 0;
   double every_region_bgr_ms = 0, every_region_uyvy_ms = 0;
@@ -155,7 +158,7 @@ BoundedTimes timeBounded(const cv::Mat& bgr, const std::vector<ColorClass>& clas
     }, 40, 5);
   }
   for (const NoiseOption& option : noiseOptions()) {
-    const cv::Mat& image = option.format == PixelFormat::UYVY ? uyvy : bgr;
+    const cv::Mat& image = option.frame(bgr, uyvy);
     t.option_ms.push_back(trackedMs(image, option.format, table, option.options));
     t.option_runs.push_back(runCount(image, option.format, table, option.options));
   }
@@ -232,8 +235,8 @@ NoiseRatios noiseRatios(const BoundedTimes& clean, const cv::Size& clean_size, c
     r.real_bgr += perPixel(trackedMs(frame, PixelFormat::BGR8, table, SegmenterOptions()), frame, clean.tracked_bgr_ms);
     r.real_uyvy += perPixel(trackedMs(uyvy, PixelFormat::UYVY, table, SegmenterOptions()), frame, clean.tracked_uyvy_ms);
     for (size_t k = 0; k < options.size(); ++k) {
-      const cv::Mat& image = options[k].format == PixelFormat::UYVY ? uyvy : frame;
-      r.option_real[k] += perPixel(trackedMs(image, options[k].format, table, options[k].options), frame, clean.option_ms[k]);
+      const double ms = trackedMs(options[k].frame(frame, uyvy), options[k].format, table, options[k].options);
+      r.option_real[k] += perPixel(ms, frame, clean.option_ms[k]);
     }
   }
   r.real_frames = static_cast<int>(real_frames.size());
