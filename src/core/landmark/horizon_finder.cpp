@@ -237,21 +237,31 @@ std::vector<HorizonEstimate> HorizonDetector::Impl::candidates(const cv::Mat& bg
   std::vector<HorizonEstimate> out;
   if (!prepare(bgr, edges, o)) return out;
   const int width = bgr.cols, height = bgr.rows;
+  // Each hypothesis refined against the sky's high edge values and, where the options ask,
+  // again against its typical ones: under a cloud-textured sky a hazy ridge is fainter than the
+  // clouds' edges, and the first refinement passes over it to the stronger step below. The
+  // model weighs both (the evidence product, detect() without a model, refines once).
   const horizon::RefineOptions refine = refineOptions(o, edge_gain);
+  std::vector<double> sky_percentiles = {o.sky_percentile};
+  if (o.textured_sky_percentile < o.sky_percentile) sky_percentiles.push_back(o.textured_sky_percentile);
+  std::vector<horizon::RefinedHorizon> refined;
   for (const bool from_regions : {true, false}) {
     const std::vector<horizon::Hypothesis> hypotheses =
         from_regions ? regionHypotheses(width, height, refine, o) : houghHypotheses(lines, width, height, o);
     for (const horizon::Hypothesis& hypothesis : hypotheses) {
-      const horizon::RefinedHorizon r = refiner.refine(edges, fine, hypothesis, refine);
-      // The fit may turn a line past the steepest horizon the user allows: then it is not one.
-      if (std::fabs(r.line.angle_deg) > o.max_angle_deg) continue;
-      HorizonEstimate h = estimate(r, o, width, height);
-      h.features = features(r, from_regions, o);
-      if (o.model.valid) {
-        h.confidence = o.model.probability(h.features);
-        h.found = h.confidence >= o.min_confidence;
+      refined.clear();
+      refiner.refineEach(edges, fine, hypothesis, refine, sky_percentiles, &refined);
+      for (const horizon::RefinedHorizon& r : refined) {
+        // The fit may turn a line past the steepest horizon the user allows: then it is not one.
+        if (std::fabs(r.line.angle_deg) > o.max_angle_deg) continue;
+        HorizonEstimate h = estimate(r, o, width, height);
+        h.features = features(r, from_regions, o);
+        if (o.model.valid) {
+          h.confidence = o.model.probability(h.features);
+          h.found = h.confidence >= o.min_confidence;
+        }
+        out.push_back(h);
       }
-      out.push_back(h);
     }
   }
   return out;

@@ -107,21 +107,20 @@ double bhattacharyyaDistance(const SideStats& a, const SideStats& b) {
 
 }  // namespace
 
-double HorizonRefiner::threshold(const cv::Mat& edges, const SplitLine& line, double band, const RefineOptions& o) {
+void HorizonRefiner::measureBand(const cv::Mat& edges, const SplitLine& line, double band) {
   // The sky's own edge values (away from the band): a horizon point must beat most of them.
-  int histogram[256] = {0}, samples = 0;
+  std::fill(std::begin(sky_histogram_), std::end(sky_histogram_), 0);
+  sky_samples_ = 0;
   for (int r = 0; r < sampled_edges_.rows; ++r) {
     const uint8_t* e = sampled_edges_.ptr<uint8_t>(r);
     sideRanges(line, r * kSampleStride, edges.cols, band, [&](int first, int last, bool sky) {
       if (!sky) return;
       forEachSample(first, last, [&](int i) {
-        ++histogram[e[i]];
-        ++samples;
+        ++sky_histogram_[e[i]];
+        ++sky_samples_;
       });
     });
   }
-  sky_edge_level_ = percentileOf(histogram, samples, o.sky_percentile);
-  double t = std::max(sky_edge_level_, o.edge_floor);
   // The scanlines across the band (columns, rows for steep lines), and the typical maximum.
   const bool flat = std::fabs(line.ny) >= std::fabs(line.nx);
   const int count = flat ? edges.cols : edges.rows, length = flat ? edges.rows : edges.cols;
@@ -138,10 +137,17 @@ double HorizonRefiner::threshold(const cv::Mat& edges, const SplitLine& line, do
     for (int k = lo; k <= hi; ++k) peak = std::max<int>(peak, flat ? edges.ptr<uint8_t>(k)[f] : edges.ptr<uint8_t>(f)[k]);
     maxima_.push_back(peak);
   }
+  typical_peak_ = -1;
   if (!maxima_.empty()) {
     std::nth_element(maxima_.begin(), maxima_.begin() + maxima_.size() / 2, maxima_.end());
-    t = std::max(t, o.peak_ratio * maxima_[maxima_.size() / 2]);
+    typical_peak_ = maxima_[maxima_.size() / 2];
   }
+}
+
+double HorizonRefiner::threshold(double sky_percentile, const RefineOptions& o) {
+  sky_edge_level_ = percentileOf(sky_histogram_, sky_samples_, sky_percentile);
+  double t = std::max(sky_edge_level_, o.edge_floor);
+  if (typical_peak_ >= 0) t = std::max(t, o.peak_ratio * typical_peak_);
   return t;
 }
 
@@ -265,13 +271,45 @@ void HorizonRefiner::checkSamples(const cv::Mat& edges) const {
             sampled_edges_.cols == (edges.cols + kSampleStride - 1) / kSampleStride);
 }
 
+namespace {
+// Two lines within the fit's resolution (two angle steps, an inlier distance) of each other.
+bool sameLine(const SplitLine& a, const SplitLine& b, double inlier_px) {
+  return std::fabs(a.angle_deg - b.angle_deg) < 2 * kAngleStepDeg && std::fabs(a.rho - b.rho) < inlier_px;
+}
+}  // namespace
+
 RefinedHorizon HorizonRefiner::refine(const cv::Mat& edges, const RegionGrid& fine, const Hypothesis& h,
                                       const RefineOptions& o) {
+  std::vector<RefinedHorizon> out;
+  refineEach(edges, fine, h, o, {o.sky_percentile}, &out);
+  return out.front();
+}
+
+void HorizonRefiner::refineEach(const cv::Mat& edges, const RegionGrid& fine, const Hypothesis& h, const RefineOptions& o,
+                                const std::vector<double>& sky_percentiles, std::vector<RefinedHorizon>* out) {
   checkSamples(edges);
+  const SplitLine start = SplitLine::fromAngleDistance(h.angle_deg, h.centre_distance, edges.cols, edges.rows);
+  measureBand(edges, start, o.band_cells * fine.cell());
+  const size_t first = out->size();
+  double previous_threshold = -1;
+  for (const double percentile : sky_percentiles) {
+    const double t = threshold(percentile, o);
+    if (t == previous_threshold) continue;  // the same points: the same line
+    previous_threshold = t;
+    RefinedHorizon r = fitAt(edges, start, t, o);
+    // A lower threshold that found a line already refined adds nothing.
+    if (std::any_of(out->begin() + first, out->end(), [&](const RefinedHorizon& k) { return sameLine(k.line, r.line, o.inlier_px); })) continue;
+    r.edge_at_line = medianEdgeAtInliers(edges, r.line, o.inlier_px);
+    r.evidence = evidence(edges, fine, r.line, o);
+    r.evidence.local_step = localStep(fine, r.line, std::sqrt(o.noise_variance));
+    out->push_back(r);
+  }
+}
+
+RefinedHorizon HorizonRefiner::fitAt(const cv::Mat& edges, const SplitLine& start, double threshold, const RefineOptions& o) {
   RefinedHorizon out;
-  out.line = SplitLine::fromAngleDistance(h.angle_deg, h.centre_distance, edges.cols, edges.rows);
-  const double band = o.band_cells * fine.cell();
-  scanPoints(edges, out.line, threshold(edges, out.line, band, o));
+  out.line = start;
+  scanPoints(edges, out.line, threshold);
   out.points = static_cast<int>(px_.size());
   out.scanlines = static_cast<int>(std::count_if(scans_.begin(), scans_.end(), [](const Scan& s) { return s.hi >= s.lo; }));
   SplitLine fitted;
@@ -290,9 +328,6 @@ RefinedHorizon HorizonRefiner::refine(const cv::Mat& edges, const RegionGrid& fi
   }
   out.rms = out.inliers > 0 ? std::sqrt(squares / out.inliers) : 0;
   out.sky_edge_level = std::max(sky_edge_level_, o.edge_floor);
-  out.edge_at_line = medianEdgeAtInliers(edges, out.line, o.inlier_px);
-  out.evidence = evidence(edges, fine, out.line, o);
-  out.evidence.local_step = localStep(fine, out.line, std::sqrt(o.noise_variance));
   return out;
 }
 

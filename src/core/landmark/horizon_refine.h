@@ -61,6 +61,11 @@ class HorizonRefiner {
   void sampleTexture(const cv::Mat& edges, const RegionGrid& fine);
   RefinedHorizon refine(const cv::Mat& edges, const RegionGrid& fine, const Hypothesis& hypothesis,
                         const RefineOptions& options);
+  // The same once per sky percentile (options.sky_percentile unused), appended to *out: the
+  // sky's edge values and the band measured once; a percentile whose threshold or whose line
+  // (within the fit's resolution) an earlier one already gave adds nothing.
+  void refineEach(const cv::Mat& edges, const RegionGrid& fine, const Hypothesis& hypothesis, const RefineOptions& options,
+                  const std::vector<double>& sky_percentiles, std::vector<RefinedHorizon>* out);
   // The evidence for a line as the horizon, from the grid's colours and the texture samples.
   Evidence evidence(const cv::Mat& edges, const RegionGrid& fine, const SplitLine& line, const RefineOptions& options);
 
@@ -69,7 +74,11 @@ class HorizonRefiner {
     int lo, hi;  // the band's samples on this scanline
   };
   void checkSamples(const cv::Mat& edges) const;  // throws cv::Exception without sampleTexture(edges)
-  double threshold(const cv::Mat& edges, const SplitLine& line, double band, const RefineOptions& o);
+  // The sky's edge histogram (away from the band), the band's scanlines and typical maximum.
+  void measureBand(const cv::Mat& edges, const SplitLine& line, double band);
+  double threshold(double sky_percentile, const RefineOptions& o);  // after measureBand()
+  // The edge points beating `threshold` and the line through them (no evidence yet).
+  RefinedHorizon fitAt(const cv::Mat& edges, const SplitLine& start, double threshold, const RefineOptions& o);
   double medianEdgeAtInliers(const cv::Mat& edges, const SplitLine& line, double inlier_px);
   double localStep(const RegionGrid& fine, const SplitLine& line, double noise);
   void scanPoints(const cv::Mat& edges, const SplitLine& line, double threshold);
@@ -81,6 +90,8 @@ class HorizonRefiner {
   std::vector<int> histogram_;
   std::vector<double> steps_, spreads_;
   double sky_edge_level_ = 0;
+  int sky_histogram_[256] = {0}, sky_samples_ = 0;
+  int typical_peak_ = -1;  // the band's median scanline maximum, -1: no scanline
   cv::Mat sampled_edges_, sampled_relative_;  // CV_8UC1, sampleTexture()
 };
 

@@ -300,7 +300,7 @@ TEST(LandmarkParams, DefaultsFileRoundTripsEveryParameter) {
   RLE_EXPECT_READ_BACK(key, field.boundary.member, field_defaults.boundary.member)
 #include "rle_vision/params/landmark_params.def"
 #undef RLE_EXPECT_READ_BACK
-  EXPECT_EQ(keys, 53 + 15);
+  EXPECT_EQ(keys, 54 + 15);
   // Values that differ from the defaults are read, too.
   EXPECT_EQ(parseLandmarkParams("gray_threshold: 40\nthin_edges: false\nseed: 7\n", "l.yaml").objects.gray_threshold, 40);
   EXPECT_EQ(parseLandmarkParams("seed: 7\n", "l.yaml").hough.seed, 7u);
