@@ -298,7 +298,8 @@ void HorizonRefiner::refineEach(const cv::Mat& edges, const RegionGrid& fine, co
     previous_threshold = t;
     RefinedHorizon r = fitAt(edges, start, t, o);
     // A lower threshold that found a line already refined adds nothing.
-    if (std::any_of(out->begin() + first, out->end(), [&](const RefinedHorizon& k) { return sameLine(k.line, r.line, o.inlier_px); })) continue;
+    const auto same = [&](const RefinedHorizon& k) { return sameLine(k.line, r.line, o.inlier_px); };
+    if (std::any_of(out->begin() + first, out->end(), same)) continue;
     r.edge_at_line = medianEdgeAtInliers(edges, r.line, o.inlier_px);
     r.evidence = evidence(edges, fine, r.line, o);
     r.evidence.local_step = localStep(fine, r.line, std::sqrt(o.noise_variance));
