@@ -29,6 +29,31 @@ double medianMs(Body body, int runs = 400, int warmup = 30) {
   return ms[runs / 2];
 }
 
+// Runs the bodies in turns, `per_turn` timed runs of each (after one untimed, so each turn
+// starts warm, as a repeated body does), until each has `runs`; returns each body's median in
+// ms. A machine's speed drifts over seconds: bodies timed in the same turns feel the same
+// drift, so the ratios of their medians hold where medians timed one after another wander.
+template <typename Body>
+std::vector<double> medianMsInTurns(const std::vector<Body>& bodies, int runs = 400, int per_turn = 10) {
+  std::vector<std::vector<double>> ms(bodies.size());
+  for (int done = 0; done < runs; done += per_turn) {
+    for (size_t k = 0; k < bodies.size(); ++k) {
+      bodies[k]();
+      for (int i = 0; i < per_turn; ++i) {
+        const auto start = std::chrono::steady_clock::now();
+        bodies[k]();
+        ms[k].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      }
+    }
+  }
+  std::vector<double> medians;
+  for (std::vector<double>& times : ms) {
+    std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
+    medians.push_back(times[times.size() / 2]);
+  }
+  return medians;
+}
+
 // Keeps the compiler from dropping work whose result is unused.
 template <typename T>
 inline void keep(const T& value) {

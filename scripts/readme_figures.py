@@ -107,7 +107,8 @@ def tracker_noise_ratios():
     if d.get('real_ratio_frames', 0) > 0:
         rows.append(['%d real robot frames / clean, per pixel' % d['real_ratio_frames']] +
                     ['%.2fx' % d['real_to_clean_tracker%s_ratio_per_pixel' % c] for c in columns])
-    rows.append(['clean frame (the ratios\' base)'] + [ms(d['bounded_clean_tracker%s_ms' % c], 3) for c in columns])
+    rows.append(['clean frame (the ratios\' base, timed in turns with them)'] +
+                [ms(d['noise_ratio_clean_tracker%s_ms' % c], 3) for c in columns])
     rows.append(['runs, σ = 25 / σ = 60'] + ['%d / %d' % (d['bounded_noise25_runs%s' % r], d['bounded_noise60_runs%s' % r])
                                               for r in columns])
     return (table(['segment + tracker, `colors.txt`', 'bgr8', 'yuv422 (UYVY)', 'bgr8, `bgr_pair_chroma`',
