@@ -16,8 +16,9 @@ namespace {
 // which matters on noisy frames (thousands of short runs) and costs little on clean ones.
 //
 // On a noisy row whether a stretch is kept (labelled, not background) or, with a flip filter,
-// merged is a coin toss, so the row encoders below decide with selects, not branches: every
-// stretch is written to the row's buffer and the count moves on only for one kept.
+// merged is a coin toss, so the row encoders below avoid a branch on it: every stretch is
+// written to the row's buffer and the count moves on only for one kept, and the flip filter's
+// state moves by conditional assignments (the compiler may still branch on the merge).
 class RowBuffer {
  public:
   RowBuffer(Run* out, int y, int32_t first_index) : out_(out), y_(y), first_index_(first_index) {}
