@@ -480,7 +480,7 @@ int main(int argc, char** argv) {
   const FrameTimes real_times = have_real ? timeFrame(real, real_classes) : FrameTimes();
 
   const bench::VerifierTimes verifier =
-      bench::timeVerifier(frame.image, classes, source_dir + "/config/ball_verifier.yml");
+      bench::timeVerifier(frame.image, classes, source_dir + "/config/ball_verifier.yml.gz");
 
   const double ratio_to_memcpy = clean.frame.bgr_ms / clean.memcpy_ms;
   printClean(frame, classes.size(), clean);
@@ -496,7 +496,7 @@ int main(int argc, char** argv) {
   printBounded("noise sigma 60", bounded60);
   std::printf("    %-42s targets: segment + tracker yuv422 <= 1.6 ms, bgr8 <= 3 ms\n", "");
   printNoiseRatios(ratios);
-  std::printf("  verifier (config/ball_verifier.yml), %zu candidates on the 640x480 frame, %zu scored (the cap):\n",
+  std::printf("  verifier (config/ball_verifier.yml.gz), %zu candidates on the 640x480 frame, %zu scored (the cap):\n",
               verifier.candidates, verifier.scored);
   std::printf("    %-42s %8.3f ms\n", "segment + tracker alone", verifier.tracker_ms);
   std::printf("    %-42s %8.3f ms  (%.2f us a candidate; target <= 0.2 ms at 50)\n", "verifier: features and score",

@@ -1,8 +1,10 @@
 // make eval (ball verifier, issue 30): grouped cross-validation by date. For each date of DIR in
-// turn: the ball class calibrated on the other dates (rle_vision_calibrate's core), loosened by
-// --widen levels on every channel for recall; its blobs on the other dates' frames are the
-// candidates a verifier (verify/blob_verifier.h) is trained on (on a labelled ball: positive);
-// then the held-out date's candidates are scored and those at 0.5 or more kept. Beside it, on
+// turn: the ball class calibrated on each other date (rle_vision_calibrate's core), the smallest
+// range holding them all (widened by --widen levels on every channel, 0 by default); its blobs
+// on the other dates' frames, the floor's colour taking the floor first, are the candidates a
+// verifier (verify/blob_verifier.h: one model per training date, trained without it) is trained
+// on (on a labelled ball: positive), as rle_vision_train does; then the held-out date's
+// candidates are scored and those at 0.5 or more kept. Beside it, on
 // the same frames: the calibrated range alone (what the tracker does without a verifier, and
 // what OpenCV's inRange pipeline finds at the same range), and the verifier with the field side
 // filter. Recall is over every labelled ball and over the balls on the field side.
@@ -53,9 +55,8 @@ struct HeldOutScore {
 const std::vector<std::pair<const char*, BallScore HeldOutScore::*>> kMethods = {
     {"range", &HeldOutScore::range}, {"candidates", &HeldOutScore::loose}, {"verified", &HeldOutScore::verified},
     {"verified_on_field", &HeldOutScore::verified_on_field}};
-const char* const kMethodNames[] = {"calibrated range alone (= OpenCV inRange)", "loosened range: the candidates",
-                                    "loosened range + verifier",
-                                    "loosened range + verifier, field side only"};
+const char* const kMethodNames[] = {"calibrated range alone (= OpenCV inRange)", "candidates (covering range)",
+                                    "candidates + verifier", "candidates + verifier, field side only"};
 
 // How far a candidate lies above the frame's field boundary, in image heights (0 without one):
 // the feature --compare-models adds. Its centroid, as the features keep it.
@@ -63,20 +64,30 @@ float heightAboveField(const FieldResult& field, double cx, double cy, int rows)
   return field.boundary.found ? static_cast<float>(field.boundary.heightAbove(cx, cy) / rows) : 0.0f;
 }
 
+const ColorClass* floorOf(const FieldResult& field) { return field.colour.found ? &field.colour.range : nullptr; }
+
+// The candidates' range: the smallest holding the ball as calibrated on each date, widened.
+ColorClass candidateRange(const std::vector<const Date*>& dates, int label_class, int widen) {
+  std::vector<ColorClass> calibrated;
+  for (const Date* d : dates) calibrated.push_back(bench::calibrateBall({d}, label_class));
+  return widenedRange(rangeCovering(calibrated), widen);
+}
+
 // The candidates of `dates`' frames (blobs of `range`) and their labels; with `above_field`, also
 // each candidate's height above the field boundary.
 VerifierTrainingSet collect(const std::vector<const Date*>& dates, const ColorClass& range, int label_class,
                             cv::Mat* above_field = nullptr) {
   VerifierTrainingSet set(range, bench::kMinBallBlobArea);
-  for (const Date* d : dates) {
-    for (const std::string& path : d->images) {
+  for (size_t g = 0; g < dates.size(); ++g) {
+    set.setGroup(static_cast<int>(g));
+    for (const std::string& path : dates[g]->images) {
       const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
       if (bgr.empty()) throw std::runtime_error(path + ": cannot read the image");
       const int before = set.features().rows;
-      set.addFrame(bgr, readYoloBoxes(yoloLabelPath(path), label_class, bgr.size()));
-      if (!above_field || set.features().rows == before) continue;
       FieldResult field;
       FieldDetector().detect(bgr, &field);
+      set.addFrame(bgr, readYoloBoxes(yoloLabelPath(path), label_class, bgr.size()), floorOf(field));
+      if (!above_field || set.features().rows == before) continue;
       for (int i = before; i < set.features().rows; ++i) {  // features 4 and 5: the centroid's row and column
         const float* f = set.features().ptr<float>(i);
         above_field->push_back(heightAboveField(field, f[5] * bgr.cols, f[4] * bgr.rows, bgr.rows));
@@ -105,12 +116,12 @@ HeldOutScore evaluate(const Date& held_out, const std::vector<const Date*>& trai
                       bool compare_models) {
   HeldOutScore s;
   const ColorClass calibrated = bench::calibrateBall(training, label_class);
-  const ColorClass candidates_range = widenedRange(calibrated, widen);
+  const ColorClass candidates_range = candidateRange(training, label_class, widen);
   cv::Mat above_field;
   const VerifierTrainingSet set = collect(training, candidates_range, label_class, compare_models ? &above_field : nullptr);
   s.train_candidates = static_cast<int>(set.labels().size());
   s.train_positives = set.positives();
-  const BlobVerifier verifier = BlobVerifier::train(set.features(), set.labels());
+  const BlobVerifier verifier = BlobVerifier::trainAcrossGroups(set.features(), set.labels(), set.groups());
   std::vector<AlternativeModel> alternatives;
   if (compare_models) {
     alternatives.emplace_back(AlternativeModel::Kind::kSvm, set.features(), set.labels());
@@ -120,7 +131,6 @@ HeldOutScore evaluate(const Date& held_out, const std::vector<const Date*>& trai
     alternatives.emplace_back(AlternativeModel::Kind::kBoostWithField, with_field, set.labels());
   }
   bench::BallMethods range_alone(calibrated);
-  const ColorTable table({candidates_range});
   Segmenter segmenter;
   std::vector<Region> regions;
   CandidateFeatures x;
@@ -134,10 +144,9 @@ HeldOutScore evaluate(const Date& held_out, const std::vector<const Date*>& trai
     BallScore unused;
     range_alone.ours(bgr, truth, field, &s.range, &unused);
     const auto start = std::chrono::steady_clock::now();
-    segmenter.segment(bgr, PixelFormat::BGR8, table, &regions);
+    candidateRegions(&segmenter, bgr, candidates_range, floorOf(field), bench::kMinBallBlobArea, &regions);
     std::vector<cv::Point2d> kept, kept_on_field, all, kept_by[3];
     for (const Region& r : regions) {
-      if (r.area < bench::kMinBallBlobArea) continue;
       ++s.candidates;
       all.emplace_back(r.cx, r.cy);
       candidateFeatures(bgr, r, &x);
@@ -180,7 +189,7 @@ void addValues(const std::string& prefix, const HeldOutScore& s, std::vector<std
 
 void run(const std::vector<Date>& dates, int label_class, int widen, bool compare_models, const std::string& json) {
   std::printf("rle_vision eval (ball verifier): each date held out, calibrated and trained on the others; "
-              "candidates: the calibrated range widened by %d levels\n", widen);
+              "candidates: the smallest range holding the ball as calibrated on each training date, widened by %d levels, the floor's colour first\n", widen);
   std::printf("%-10s %-46s %6s %7s %7s %6s %9s %8s\n", "held out", "method", "balls", "recall", "field-r", "blobs",
               "precision", "ms/frame");
   std::vector<std::pair<std::string, double>> values;
@@ -227,7 +236,7 @@ void run(const std::vector<Date>& dates, int label_class, int widen, bool compar
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string root, json, label_class = "0", widen = "16";
+  std::string root, json, label_class = "0", widen = "0";
   bool compare_models = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];

@@ -55,7 +55,7 @@ def tracker():
         rows += [
             ['the same frame with 50 ball-coloured discs drawn (%d candidates): tracker alone' % d['verifier_candidates'],
              ms(d['verifier_frame_tracker_ms'], 3), ''],
-            ['ball verifier (`config/ball_verifier.yml`) on its %d largest candidates: features and score'
+            ['ball verifier (`config/ball_verifier.yml.gz`) on its %d largest candidates: features and score'
              % d['verifier_scored'], ms(d['verifier_ms'], 3), '≤ 0.2 ms at 50 candidates'],
         ]
     return table(['', 'measured', 'target'], rows) + '\n\n' + provenance('make bench', 'tracker', d)

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# make train: rebuilds the shipped ball verifier, config/ball_verifier.yml, from the labelled
+# make train: rebuilds the shipped ball verifier, config/ball_verifier.yml.gz, from the labelled
 # RoboCup MSL frames (each date a group: rle_vision_train prints each date held out, a model
 # trained on the other dates scoring it). Deterministic: the same frames give the same file.
 # Commit the file; it loads on a robot without the data (colors.yaml: verifier_file).
 set -euo pipefail
 source "$(dirname "$0")/env.sh"
 data="${EVAL_DATA_DIR:-$ROOT/../shared/data}/robocup_msl"
-output="${VERIFIER_OUTPUT:-$ROOT/config/ball_verifier.yml}"
+output="${VERIFIER_OUTPUT:-$ROOT/config/ball_verifier.yml.gz}"
 dates=()
 for dir in "$data"/*/; do [[ -d "$dir" ]] && dates+=("${dir%/}"); done
 if (( ${#dates[@]} == 0 )); then

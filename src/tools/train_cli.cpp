@@ -1,9 +1,11 @@
 // rle_vision_train: a verifier for a colour class from labelled frames (verify/blob_verifier.h).
-// The class's range is calibrated on the labelled boxes (rle_vision_calibrate's core) and
-// widened for recall; its blobs are the candidates; those on a labelled box are the positives.
-// Each FOLDER is a group (a recording, a date): with two or more, every group is held out in
-// turn, and a range calibrated and a verifier trained on the others score its candidates
-// (grouped cross-validation).
+// Each FOLDER is a group (a recording, a date: one hall's light). The class is calibrated on each
+// group's labelled boxes (rle_vision_calibrate's core); the candidates' range is the smallest
+// holding all of them (optionally widened); its blobs, with the floor's colour taking the floor's
+// pixels first as in the tracker, are the candidates; those on a labelled box are the positives.
+// With two or more groups the verifier is one model per group, trained without it (a candidate
+// must convince them all), and every group is held out in turn: a range and a verifier made
+// from the others score its candidates (grouped cross-validation).
 //
 //   rle_vision_train --class NAME --label-class N [--widen LEVELS] --output FILE FOLDER...
 #include <cstdio>
@@ -13,6 +15,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "rle_vision/field/field_detector.h"
 #include "rle_vision/io/yolo_labels.h"
 #include "rle_vision/learning/color_calibration.h"
 #include "rle_vision/verify/blob_verifier.h"
@@ -26,14 +29,15 @@ const char* kUsage =
     "usage: rle_vision_train --class NAME --label-class N [--widen LEVELS] --output FILE FOLDER...\n"
     "  --class NAME       the class the verifier is for (the colour class of that name)\n"
     "  --label-class N    its boxes: class N of the YOLO label file beside each image\n"
-    "  --widen LEVELS     the candidates' range: the calibrated one widened by this on every channel (default 16)\n"
+    "  --widen LEVELS     widen the candidates' range (the smallest holding the class as calibrated in each FOLDER)\n"
+    "                     by this on every channel (default 0)\n"
     "  --output FILE      the verifier (YAML: the model and the candidates' range)\n"
     "  FOLDER             images with labels (and the folders below it); each FOLDER is a group held out in turn\n"
     "Exit status: 0 done, 2 bad input (no images, unreadable files, no labelled object among the candidates).\n";
 
 struct Arguments {
   std::string name, output;
-  int label_class = -1, widen = 16;
+  int label_class = -1, widen = 0;
   std::vector<std::string> folders;
 };
 
@@ -91,21 +95,22 @@ std::string folderName(const std::string& folder) {
 
 using Groups = std::vector<std::vector<std::string>>;
 
-// The candidates' range: the class calibrated on the labelled boxes of `groups` (all but
-// `skip`), widened.
+// The candidates' range: the smallest holding the class as calibrated on each group's labelled
+// boxes (all groups but `skip`; a group without any adds nothing), widened.
 ColorClass candidateRange(const Arguments& a, const Groups& groups, size_t skip) {
-  std::vector<CalibrationExample> examples;
+  std::vector<ColorClass> calibrated;
   for (size_t g = 0; g < groups.size(); ++g) {
-    if (g == skip) continue;
+    std::vector<CalibrationExample> examples;
     for (const std::string& path : groups[g]) {
       CalibrationExample e = readYoloExample(path, a.label_class);
-      if (!e.boxes.empty()) examples.push_back(std::move(e));
+      if (g != skip && !e.boxes.empty()) examples.push_back(std::move(e));
     }
+    if (!examples.empty()) calibrated.push_back(calibrateColorClass(examples, a.name).color_class);
   }
-  if (examples.empty()) {
+  if (calibrated.empty()) {
     throw std::runtime_error("no box of label class " + std::to_string(a.label_class) + " in any label file");
   }
-  return widenedRange(calibrateColorClass(examples, a.name).color_class, a.widen);
+  return widenedRange(rangeCovering(calibrated), a.widen);
 }
 
 // The candidates of the frames of `groups` (only group `only`, or all but `skip`).
@@ -114,10 +119,14 @@ VerifierTrainingSet candidates(const Arguments& a, const Groups& groups, const C
   VerifierTrainingSet set(range);
   for (size_t g = 0; g < groups.size(); ++g) {
     if (g == skip || (only != static_cast<size_t>(-1) && g != only)) continue;
+    set.setGroup(static_cast<int>(g));
     for (const std::string& path : groups[g]) {
       const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
       if (bgr.empty()) throw std::runtime_error(path + ": cannot read the image");
-      set.addFrame(bgr, readYoloBoxes(yoloLabelPath(path), a.label_class, bgr.size()));
+      FieldResult field;
+      FieldDetector().detect(bgr, &field);
+      set.addFrame(bgr, readYoloBoxes(yoloLabelPath(path), a.label_class, bgr.size()),
+                   field.colour.found ? &field.colour.range : nullptr);
     }
   }
   return set;
@@ -135,7 +144,7 @@ int run(const Arguments& a) {
   if (all.positives() == 0) {
     throw std::runtime_error("no candidate lies on a labelled " + a.name + ": check --label-class and --widen");
   }
-  std::printf("candidates: %s YUV [%d %d %d]..[%d %d %d] (calibrated, widened by %d)\n", a.name.c_str(), range.min[0],
+  std::printf("candidates: %s YUV [%d %d %d]..[%d %d %d] (calibrated per folder, covered, widened by %d)\n", a.name.c_str(), range.min[0],
               range.min[1], range.min[2], range.max[0], range.max[1], range.max[2], a.widen);
   // How the file was made, kept in it: the command, the data, the held-out figures.
   std::string note = "Made by rle_vision_train --class " + a.name + " --label-class " + std::to_string(a.label_class) +
@@ -151,11 +160,15 @@ int run(const Arguments& a) {
     const ColorClass held_range = candidateRange(a, groups, held);
     const VerifierTrainingSet others = candidates(a, groups, held_range, held);
     if (others.positives() == 0 || others.positives() == static_cast<int>(others.labels().size())) continue;
-    note += printScores("held out " + folderName(a.folders[held]), BlobVerifier::train(others.features(), others.labels()),
+    note += printScores("held out " + folderName(a.folders[held]),
+                        BlobVerifier::trainAcrossGroups(others.features(), others.labels(), others.groups()),
                         candidates(a, groups, held_range, kNone, held)) + "\n";
   }
-  BlobVerifier verifier = BlobVerifier::train(all.features(), all.labels());
+  BlobVerifier verifier = BlobVerifier::trainAcrossGroups(all.features(), all.labels(), all.groups());
   verifier.setCandidateRange(range);
+  note += std::to_string(verifier.modelCount()) + (verifier.modelCount() > 1 ? " models, one per folder, each trained without it; a "
+                                                                              "candidate scores the lowest of theirs\n"
+                                                                            : " model\n");
   note += printScores("training (all folders)", verifier, all);
   verifier.save(a.output, note);
   std::printf("wrote %s\n", a.output.c_str());

@@ -54,13 +54,14 @@ class VerifierPipelineTest(unittest.TestCase):
             os.makedirs(os.path.join(self.dir, folder))
             subprocess.run(['rosrun', 'rle_vision', 'verifier_scene_frames', os.path.join(self.dir, folder), str(frames),
                             str(seed)], check=True)
-        model = os.path.join(self.dir, 'ball_verifier.yml')
-        subprocess.run(['rosrun', 'rle_vision', 'rle_vision_train', '--class', 'ball', '--label-class', '0', '--output',
-                        model, os.path.join(self.dir, 'train')], check=True, stdout=subprocess.DEVNULL)
+        model = os.path.join(self.dir, 'ball_verifier.yml.gz')
+        # One folder, one light: the same-coloured shapes are candidates only with the range widened.
+        subprocess.run(['rosrun', 'rle_vision', 'rle_vision_train', '--class', 'ball', '--label-class', '0', '--widen', '16',
+                        '--output', model, os.path.join(self.dir, 'train')], check=True, stdout=subprocess.DEVNULL)
         self.colors = os.path.join(self.dir, 'colors.yaml')
         with open(self.colors, 'w') as f:
             f.write('classes:\n'
-                    '  - name: ball\n    verifier_file: ball_verifier.yml\n    min_score: 0.5\n'
+                    '  - name: ball\n    verifier_file: ball_verifier.yml.gz\n    min_score: 0.5\n'
                     '  - name: goal\n    min: [0, 170, 0]\n    max: [255, 255, 110]\n    min_area_px: 20\n')
 
     def tearDown(self):

@@ -1,7 +1,9 @@
 // A verifier learned from labelled frames: colour proposes candidates (the tracker's blobs of a
 // permissive range), a small model decides which candidates are the object. The model is
 // OpenCV's ml Boost (Real AdaBoost on depth-2 trees): deterministic, small (a few tens of KB),
-// microseconds a candidate.
+// microseconds a candidate. Trained across groups (recordings in different halls and light), it
+// is one model per group, each trained without that group, and a candidate must convince them
+// all: what only one hall's frames taught (a colour, a background) does not decide.
 #pragma once
 
 #include <memory>
@@ -41,10 +43,18 @@ class BlobVerifier {
   // either class has no sample or the sizes disagree.
   static BlobVerifier train(const cv::Mat& features, const std::vector<int>& is_object,
                             const VerifierTrainOptions& options = VerifierTrainOptions());
+  // `group[i]`: candidate i's group (its recording, its date). With two or more groups, one
+  // model per group, trained on the other groups' candidates (a group whose others hold no
+  // object, or nothing else, adds no model); with fewer, or when no group adds one, train().
+  // Throws as train() does.
+  static BlobVerifier trainAcrossGroups(const cv::Mat& features, const std::vector<int>& is_object,
+                                        const std::vector<int>& group,
+                                        const VerifierTrainOptions& options = VerifierTrainOptions());
 
   bool trained() const;
-  // The candidate's score in [0, 1] (a logistic of the boosted sum: 0.5 is the decision
-  // boundary); 0 without a model.
+  int modelCount() const { return static_cast<int>(models_.size()); }
+  // The candidate's score in [0, 1]: the lowest of the models' (each a logistic of its boosted
+  // sum: 0.5 is the decision boundary); 0 without a model.
   float score(const CandidateFeatures& features) const;
 
   // The permissive colour range whose blobs are the candidates (kept in the model file: the
@@ -52,14 +62,14 @@ class BlobVerifier {
   void setCandidateRange(const ColorClass& range) { candidate_range_ = range; }
   const ColorClass& candidateRange() const { return candidate_range_; }
 
-  // The model and the candidate range as a YAML or XML file (OpenCV FileStorage), with the
-  // feature count checked on load. Both throw std::runtime_error with the path and the reason.
+  // The models and the candidate range as a YAML or XML file (OpenCV FileStorage; a name
+  // ending in .gz is compressed), with the feature count checked on load. Both throw std::runtime_error with the path and the reason.
   // `note` (how the model was made) goes at the top of the file as comment lines.
   void save(const std::string& path, const std::string& note = "") const;
   static BlobVerifier load(const std::string& path);
 
  private:
-  cv::Ptr<cv::ml::Boost> model_;
+  std::vector<cv::Ptr<cv::ml::Boost>> models_;
   ColorClass candidate_range_;
 };
 

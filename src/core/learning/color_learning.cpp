@@ -54,6 +54,9 @@ bool holds(const ColorStats& range, const cv::Vec3b& p) {
 }
 
 bool wrapped(const ColorClass& c) { return c.min[0] > c.max[0] || c.min[1] > c.max[1] || c.min[2] > c.max[2]; }
+// Kept as configured: wrapped (hue) ranges, and a class with a verifier, whose range is the one
+// its verifier was trained on (a learned range would feed it candidates it never saw).
+bool notLearned(const ColorClass& c) { return wrapped(c) || !c.verifier_file.empty(); }
 
 }  // namespace
 
@@ -516,7 +519,7 @@ int ColorLearner::nearestClass(const Measurement& m) const {
   double best = options_.match_gate;
   int nearest = -1;
   for (size_t k = 0; k < configured_.size(); ++k) {
-    if (wrapped(configured_[k])) continue;  // wrapped (hue) ranges are not learned
+    if (notLearned(configured_[k])) continue;
     const double d = distanceToClass(static_cast<int>(k), m.stats[static_cast<int>(configured_[k].space)]);
     if (d <= best) {
       best = d;
@@ -638,7 +641,7 @@ void ColorLearner::measureBlobs(const cv::Mat& bgr, const HorizonEstimate& horiz
   const int ring = options_.blob_ring_px;
   for (const Region& region : blob_regions_) {
     const int k = region.label - 1;
-    if (k >= static_cast<int>(configured_.size()) || wrapped(configured_[k]) || region.area < options_.blob_min_px) {
+    if (k >= static_cast<int>(configured_.size()) || notLearned(configured_[k]) || region.area < options_.blob_min_px) {
       continue;
     }
     Measurement m;

@@ -90,10 +90,14 @@ std::vector<ColorClass> ColorLearningLoop::withField(std::vector<ColorClass> cla
     }
   }
   if (static_cast<int>(classes.size()) >= kMaxColorClasses) return classes;
-  classes.push_back(field_);
+  // Before the first class with a verifier (its range is permissive: without the floor taking
+  // its own pixels first, a candidate could run over the floor and swallow what lies on it, and
+  // the verifier was trained on candidates made that way), else last.
+  const auto at = std::find_if(classes.begin(), classes.end(), [](const ColorClass& c) { return !c.verifier_file.empty(); });
+  ColorClass& field = *classes.insert(at, field_);
   // Floor patches under 0.5% of the view are specks of the floor's colour elsewhere, not the
   // floor: the tracker need not track them.
-  classes.back().min_area_px = std::max<uint32_t>(1, static_cast<uint32_t>(0.005 * image_area_px_));
+  field.min_area_px = std::max<uint32_t>(1, static_cast<uint32_t>(0.005 * image_area_px_));
   return classes;
 }
 

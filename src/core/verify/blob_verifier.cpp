@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -15,8 +16,10 @@ BlobVerifier::~BlobVerifier() = default;
 BlobVerifier::BlobVerifier(BlobVerifier&&) noexcept = default;
 BlobVerifier& BlobVerifier::operator=(BlobVerifier&&) noexcept = default;
 
-BlobVerifier BlobVerifier::train(const cv::Mat& features, const std::vector<int>& is_object,
-                                 const VerifierTrainOptions& options) {
+namespace {
+
+cv::Ptr<cv::ml::Boost> trainModel(const cv::Mat& features, const std::vector<int>& is_object,
+                                  const VerifierTrainOptions& options) {
   if (features.type() != CV_32F || features.cols != kCandidateFeatureCount ||
       features.rows != static_cast<int>(is_object.size())) {
     throw std::invalid_argument("verifier training: features must be CV_32F, one row of " +
@@ -36,27 +39,63 @@ BlobVerifier BlobVerifier::train(const cv::Mat& features, const std::vector<int>
     weights.at<float>(static_cast<int>(i)) =
         options.balance_classes ? 0.5f / (is_object[i] ? positives : negatives) * is_object.size() : 1.0f;
   }
+  cv::Ptr<cv::ml::Boost> model = cv::ml::Boost::create();
+  model->setBoostType(cv::ml::Boost::REAL);
+  model->setWeakCount(options.weak_count);
+  model->setMaxDepth(options.max_depth);
+  model->setWeightTrimRate(0);  // every sample in every round: the same model every time
+  model->setUseSurrogates(false);
+  model->train(cv::ml::TrainData::create(features, cv::ml::ROW_SAMPLE, responses, cv::noArray(), cv::noArray(), weights));
+  return model;
+}
+
+}  // namespace
+
+BlobVerifier BlobVerifier::train(const cv::Mat& features, const std::vector<int>& is_object,
+                                 const VerifierTrainOptions& options) {
   BlobVerifier verifier;
-  verifier.model_ = cv::ml::Boost::create();
-  verifier.model_->setBoostType(cv::ml::Boost::REAL);
-  verifier.model_->setWeakCount(options.weak_count);
-  verifier.model_->setMaxDepth(options.max_depth);
-  verifier.model_->setWeightTrimRate(0);  // every sample in every round: the same model every time
-  verifier.model_->setUseSurrogates(false);
-  const cv::Ptr<cv::ml::TrainData> data = cv::ml::TrainData::create(
-      features, cv::ml::ROW_SAMPLE, responses, cv::noArray(), cv::noArray(), weights);
-  verifier.model_->train(data);
+  verifier.models_.push_back(trainModel(features, is_object, options));
   return verifier;
 }
 
-bool BlobVerifier::trained() const { return model_ && model_->isTrained(); }
+BlobVerifier BlobVerifier::trainAcrossGroups(const cv::Mat& features, const std::vector<int>& is_object,
+                                             const std::vector<int>& group, const VerifierTrainOptions& options) {
+  if (group.size() != is_object.size() || features.rows != static_cast<int>(is_object.size())) {
+    throw std::invalid_argument("verifier training: one feature row and one group per candidate label");
+  }
+  std::vector<int> groups(group);
+  std::sort(groups.begin(), groups.end());
+  groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
+  BlobVerifier verifier;
+  for (size_t g = 0; groups.size() >= 2 && g < groups.size(); ++g) {
+    cv::Mat rows;
+    std::vector<int> labels;
+    int positives = 0;
+    for (size_t i = 0; i < group.size(); ++i) {
+      if (group[i] == groups[g]) continue;
+      rows.push_back(features.row(static_cast<int>(i)));
+      labels.push_back(is_object[i]);
+      positives += is_object[i] != 0;
+    }
+    if (positives == 0 || positives == static_cast<int>(labels.size())) continue;
+    verifier.models_.push_back(trainModel(rows, labels, options));
+  }
+  if (verifier.models_.empty()) return train(features, is_object, options);
+  return verifier;
+}
+
+bool BlobVerifier::trained() const {
+  return !models_.empty() && std::all_of(models_.begin(), models_.end(), [](const auto& m) { return m && m->isTrained(); });
+}
 
 float BlobVerifier::score(const CandidateFeatures& features) const {
   if (!trained()) return 0.0f;
   const cv::Mat row(1, kCandidateFeatureCount, CV_32F, const_cast<float*>(features.data()));
-  // Real AdaBoost's sum estimates half the log-odds of the object class.
-  const float sum = model_->predict(row, cv::noArray(), cv::ml::DTrees::PREDICT_SUM);
-  return 1.0f / (1.0f + std::exp(-2.0f * sum));
+  // Real AdaBoost's sum estimates half the log-odds of the object class: the lowest sum gives
+  // the lowest score.
+  float lowest = std::numeric_limits<float>::infinity();
+  for (const auto& model : models_) lowest = std::min(lowest, model->predict(row, cv::noArray(), cv::ml::DTrees::PREDICT_SUM));
+  return 1.0f / (1.0f + std::exp(-2.0f * lowest));
 }
 
 void BlobVerifier::save(const std::string& path, const std::string& note) const {
@@ -71,9 +110,13 @@ void BlobVerifier::save(const std::string& path, const std::string& note) const 
   file << "candidate_range" << "{" << "name" << c.name << "space" << toString(c.space) << "min"
        << std::vector<int>{c.min[0], c.min[1], c.min[2]} << "max" << std::vector<int>{c.max[0], c.max[1], c.max[2]}
        << "min_area_px" << static_cast<int>(c.min_area_px) << "}";
-  file << "model" << "{";
-  model_->write(file);
-  file << "}" << "}";
+  file << "models" << "[";
+  for (const auto& model : models_) {
+    file << "{";
+    model->write(file);
+    file << "}";
+  }
+  file << "]" << "}";
 }
 
 BlobVerifier BlobVerifier::load(const std::string& path) {
@@ -86,7 +129,7 @@ BlobVerifier BlobVerifier::load(const std::string& path) {
   }
   if (!file.isOpened()) throw std::runtime_error(path + ": cannot read the verifier file");
   const cv::FileNode root = file["rle_vision_verifier"];
-  if (root.empty() || root["model"].empty()) throw std::runtime_error(path + ": not a verifier file (rle_vision_train writes them)");
+  if (root.empty() || (root["models"].empty() && root["model"].empty())) throw std::runtime_error(path + ": not a verifier file (rle_vision_train writes them)");
   if (static_cast<int>(root["feature_count"]) != kCandidateFeatureCount) {
     throw std::runtime_error(path + ": made for " + std::to_string(static_cast<int>(root["feature_count"])) +
                              " features, this version computes " + std::to_string(kCandidateFeatureCount) +
@@ -106,9 +149,15 @@ BlobVerifier BlobVerifier::load(const std::string& path) {
     verifier.candidate_range_.min[c] = static_cast<uint8_t>(lo[c]);
     verifier.candidate_range_.max[c] = static_cast<uint8_t>(hi[c]);
   }
-  verifier.model_ = cv::ml::Boost::create();
-  verifier.model_->read(root["model"]);
-  if (!verifier.model_->isTrained()) throw std::runtime_error(path + ": the verifier file holds no trained model");
+  // "model": one model, as files before the models across groups held it.
+  std::vector<cv::FileNode> nodes;
+  if (root["models"].empty()) nodes.push_back(root["model"]);
+  for (const cv::FileNode& node : root["models"]) nodes.push_back(node);
+  for (const cv::FileNode& node : nodes) {
+    verifier.models_.push_back(cv::ml::Boost::create());
+    verifier.models_.back()->read(node);
+  }
+  if (!verifier.trained()) throw std::runtime_error(path + ": the verifier file holds no trained model");
   return verifier;
 }
 

@@ -40,8 +40,10 @@ TEST(TrainCli, WritesAVerifierThatLoadsAndReportsHeldOutFolders) {
   writeFolder(dir + "/a", 30, 1);
   writeFolder(dir + "/b", 30, 2);
   int status = 0;
-  const std::string out = run(std::string(RLE_VISION_TRAIN) + " --class ball --label-class 0 --output " + dir +
-                                  "/ball_verifier.yml " + dir + "/a " + dir + "/b",
+  // One light in both folders: the covering range is the ball's own, and the same-coloured
+  // shapes become candidates only with the range widened.
+  const std::string out = run(std::string(RLE_VISION_TRAIN) + " --class ball --label-class 0 --widen 16 --output " +
+                                  dir + "/ball_verifier.yml " + dir + "/a " + dir + "/b",
                               &status);
   ASSERT_EQ(status, 0) << out;
   // Each folder held out: the candidates on a ball kept, the others dropped (recall and
@@ -63,6 +65,8 @@ TEST(TrainCli, WritesAVerifierThatLoadsAndReportsHeldOutFolders) {
   EXPECT_NE(head.find("# Made by rle_vision_train --class ball --label-class 0 --widen 16 from the folders a b (60 frames)"),
             std::string::npos) << head.substr(0, 400);
   EXPECT_NE(head.find("# held out a "), std::string::npos) << head.substr(0, 800);
+  EXPECT_NE(head.find("# 2 models, one per folder, each trained without it"), std::string::npos) << head.substr(0, 800);
+  EXPECT_EQ(verifier.modelCount(), 2);
 
   // rle_vision_detect --verifier on frames neither folder had: the ball is found with its score
   // (its class and range come from the verifier file), the same-coloured shapes are not.

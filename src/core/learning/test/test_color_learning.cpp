@@ -148,6 +148,19 @@ TEST(ColorLearner, FollowsAnObjectsColour) {
   EXPECT_EQ(learner.lastMeasurements()[0].matched_class, 0);
 }
 
+// A class with a verifier keeps the range its verifier was trained on.
+TEST(ColorLearner, LeavesAClassWithAVerifierAsConfigured) {
+  std::vector<ColorClass> classes = obstacleClasses();
+  classes[0].verifier_file = "red_verifier.yml";
+  ColorLearner learner(classes, LearningOptions());
+  const SyntheticFrame f = boxFrame(cv::Scalar(30, 30, 150));  // what FollowsAnObjectsColour learns red from
+  learner.update(f.image, f.landmarks, f.objects, 0.0);
+  EXPECT_EQ(learner.classes()[0].source, "config");
+  EXPECT_EQ(learner.classes()[0].min, classes[0].min);
+  EXPECT_EQ(learner.classes()[0].max, classes[0].max);
+  for (const auto& m : learner.lastMeasurements()) EXPECT_NE(m.matched_class, 0);
+}
+
 TEST(ColorLearner, AGroundColouredObjectNeverWidensAClass) {
   // A "class" that holds the ground's colour at its edge would match a ground-coloured region:
   // the region is the ground, and the update is refused.
@@ -521,6 +534,26 @@ TEST(ColorLearningLoop, PublishesTheFieldColourAsAClass) {
   EXPECT_EQ(step.classes[2].display_rgb, with_field.back().display_rgb);
   EXPECT_EQ(step.classes[2].min_area_px, 77u);
   EXPECT_EQ(step.classes[2].source, "learned");
+}
+
+// A class with a verifier has a permissive range, and its verifier was trained on candidates
+// the floor's colour had carved first: the field class goes in before it.
+TEST(ColorLearningLoop, TheFieldClassComesBeforeAClassWithAVerifier) {
+  SyntheticFrame empty = boxFrame(cv::Scalar(50, 140, 40));
+  empty.landmarks.lines.clear();
+  std::vector<ColorClass> classes = obstacleClasses();
+  classes[1].verifier_file = "ball_verifier.yml.gz";
+  const ColorClass floor = test::makeClass("anything", ColorSpace::YUV, {{60, 100, 90}}, {{140, 130, 120}});
+  ColorLearningLoop loop(classes);
+  loop.setFieldColour(&floor);
+  const ColorLearningLoop::Step step = loop.learn(empty.image, empty.landmarks, empty.objects, 0.0, 0.0, LearningOptions(), 0.5);
+  ASSERT_TRUE(step.publish);
+  ASSERT_EQ(step.classes.size(), 3u);
+  EXPECT_EQ(step.classes[0].name, "red");
+  EXPECT_EQ(step.classes[1].name, kFieldClassName);
+  EXPECT_EQ(step.classes[1].min_area_px, static_cast<uint32_t>(0.005 * empty.image.total()));
+  EXPECT_EQ(step.classes[2].name, "blue");
+  EXPECT_EQ(step.classes[2].verifier_file, "ball_verifier.yml.gz");
 }
 
 TEST(ColorLearner, PersistentUnknownColoursBecomeLearnedClassesWhenAsked) {

@@ -3,6 +3,7 @@
 // it keeps the balls and drops the rest on frames it has not seen; the model file round-trips;
 // bad input is refused with the reason.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <vector>
@@ -77,6 +78,127 @@ TEST(BlobVerifier, ModelFileRoundTripsAndBadInputIsRefused) {
   EXPECT_THROW(BlobVerifier::load(foreign), std::runtime_error);
   EXPECT_FALSE(BlobVerifier().trained());
   EXPECT_THROW(BlobVerifier().save(path), std::runtime_error);
+}
+
+// Features of one synthetic candidate: feature 0 and feature 5 set, the rest 0.
+CandidateFeatures syntheticCandidate(float f0, float f5) {
+  CandidateFeatures x{};
+  x[0] = f0;
+  x[5] = f5;
+  return x;
+}
+
+// Three groups (halls). In groups 1 and 2 feature 0 tells objects (around +1) from the rest
+// (around -1) and feature 5 is always 0. In group 0 feature 0 tells nothing, and every object
+// has feature 5 at 3: a cue only that hall shows (a colour of its light).
+void threeHalls(cv::Mat* features, std::vector<int>* labels, std::vector<int>* groups) {
+  cv::RNG rng(7);
+  for (int g = 0; g < 3; ++g) {
+    for (int i = 0; i < 240; ++i) {
+      const bool object = i % 6 == 0;
+      const float f0 = g == 0 ? static_cast<float>(rng.gaussian(1.0)) : (object ? 1.0f : -1.0f) + static_cast<float>(rng.gaussian(0.3));
+      const CandidateFeatures x = syntheticCandidate(f0, g == 0 && object ? 3.0f : 0.0f);
+      features->push_back(cv::Mat(1, kCandidateFeatureCount, CV_32F, const_cast<float*>(x.data())));
+      labels->push_back(object);
+      groups->push_back(g);
+    }
+  }
+}
+
+TEST(BlobVerifier, AcrossGroupsACueOnlyOneHallTaughtDoesNotDecide) {
+  cv::Mat features;
+  std::vector<int> labels, groups;
+  threeHalls(&features, &labels, &groups);
+  const BlobVerifier one = BlobVerifier::train(features, labels);
+  const BlobVerifier across = BlobVerifier::trainAcrossGroups(features, labels, groups);
+  EXPECT_EQ(one.modelCount(), 1);
+  ASSERT_EQ(across.modelCount(), 3);
+  // Not an object by the cue every other hall agrees on, but with hall 0's cue: one model over
+  // all halls takes it, the models trained without one hall each do not all agree.
+  const CandidateFeatures lookalike = syntheticCandidate(-1.2f, 3.0f);
+  EXPECT_GE(one.score(lookalike), 0.5f);
+  EXPECT_LT(across.score(lookalike), 0.5f);
+  // What every hall calls an object, and what none does, both models judge alike.
+  EXPECT_GE(across.score(syntheticCandidate(1.2f, 0.0f)), 0.5f);
+  EXPECT_LT(across.score(syntheticCandidate(-1.2f, 0.0f)), 0.5f);
+  // A group whose others hold no object adds no model; one group alone: one model over all.
+  std::vector<int> only_group0_objects(labels);
+  for (size_t i = 0; i < labels.size(); ++i) only_group0_objects[i] = groups[i] == 0 && labels[i];
+  EXPECT_EQ(BlobVerifier::trainAcrossGroups(features, only_group0_objects, groups).modelCount(), 2);
+  EXPECT_EQ(BlobVerifier::trainAcrossGroups(features, labels, std::vector<int>(labels.size(), 4)).modelCount(), 1);
+  EXPECT_THROW(BlobVerifier::trainAcrossGroups(features, labels, {0, 1}), std::invalid_argument);
+}
+
+TEST(BlobVerifier, ModelsAcrossGroupsRoundTripInACompressedFile) {
+  cv::Mat features;
+  std::vector<int> labels, groups;
+  threeHalls(&features, &labels, &groups);
+  BlobVerifier verifier = BlobVerifier::trainAcrossGroups(features, labels, groups);
+  verifier.setCandidateRange(yellowRange());
+  const std::string path = testing::TempDir() + "/rle_vision_verifier_groups.yml.gz";
+  verifier.save(path, "made by a test");
+  const BlobVerifier loaded = BlobVerifier::load(path);
+  EXPECT_EQ(loaded.modelCount(), 3);
+  for (int i = 0; i < features.rows; i += 7) {
+    CandidateFeatures x;
+    std::copy(features.ptr<float>(i), features.ptr<float>(i) + kCandidateFeatureCount, x.begin());
+    EXPECT_FLOAT_EQ(loaded.score(x), verifier.score(x)) << "candidate " << i;
+  }
+}
+
+// The candidates' range holds the ball as calibrated in every hall; it cannot mix colour spaces
+// or cover a wrapping hue.
+TEST(CandidateRange, CoversEveryHallsRange) {
+  const ColorClass a = test::makeClass("ball", ColorSpace::YUV, {{100, 60, 130}}, {{180, 100, 160}});
+  const ColorClass b = test::makeClass("ball", ColorSpace::YUV, {{150, 50, 140}}, {{250, 90, 170}});
+  const ColorClass both = rangeCovering({a, b});
+  EXPECT_EQ(both.min, (Channels{{100, 50, 130}}));
+  EXPECT_EQ(both.max, (Channels{{250, 100, 170}}));
+  EXPECT_EQ(rangeCovering({a}).max, a.max);
+  EXPECT_THROW(rangeCovering({}), std::invalid_argument);
+  EXPECT_THROW(rangeCovering({a, test::makeClass("ball", ColorSpace::HSV, {{10, 0, 0}}, {{20, 255, 255}})}),
+               std::invalid_argument);
+  EXPECT_THROW(rangeCovering({test::makeClass("red", ColorSpace::HSV, {{170, 0, 0}}, {{10, 255, 255}})}),
+               std::invalid_argument);
+}
+
+// A permissive range that also takes the floor: without the floor's colour first the ball and
+// the floor are one candidate, centred nowhere near the ball; with it the ball is its own.
+TEST(CandidateRange, TheFloorsColourFirstKeepsTheBallACandidateOfItsOwn) {
+  cv::Mat bgr(200, 240, CV_8UC3, cv::Scalar(60, 120, 70));
+  cv::RNG rng(3);
+  cv::Mat noise(bgr.size(), CV_8UC3);
+  rng.fill(noise, cv::RNG::NORMAL, 0, 3);
+  bgr += noise;
+  const cv::Point centre(170, 60);
+  cv::circle(bgr, centre, 10, cv::Scalar(40, 200, 230), cv::FILLED);
+  cv::Mat floor_yuv, ball_yuv;
+  cv::cvtColor(cv::Mat(1, 1, CV_8UC3, cv::Scalar(60, 120, 70)), floor_yuv, cv::COLOR_BGR2YUV);
+  cv::cvtColor(cv::Mat(1, 1, CV_8UC3, cv::Scalar(40, 200, 230)), ball_yuv, cv::COLOR_BGR2YUV);
+  Channels floor_lo, floor_hi, lo, hi;
+  for (int c = 0; c < 3; ++c) {
+    const int f = floor_yuv.at<cv::Vec3b>(0)[c], b = ball_yuv.at<cv::Vec3b>(0)[c];
+    floor_lo[c] = static_cast<uint8_t>(std::max(0, f - 15));
+    floor_hi[c] = static_cast<uint8_t>(std::min(255, f + 15));
+    lo[c] = static_cast<uint8_t>(std::max(0, std::min(f, b) - 20));
+    hi[c] = static_cast<uint8_t>(std::min(255, std::max(f, b) + 20));
+  }
+  const ColorClass permissive = test::makeClass("ball", ColorSpace::YUV, lo, hi);
+  const ColorClass floor = test::makeClass("field", ColorSpace::YUV, floor_lo, floor_hi);
+  auto nearBall = [&](const std::vector<Region>& candidates) {
+    return std::count_if(candidates.begin(), candidates.end(), [&](const Region& r) {
+      return std::hypot(r.cx - centre.x, r.cy - centre.y) < 2 && r.right - r.left < 25;
+    });
+  };
+  Segmenter segmenter;
+  std::vector<Region> candidates;
+  candidateRegions(&segmenter, bgr, permissive, nullptr, 20, &candidates);
+  EXPECT_EQ(nearBall(candidates), 0);
+  ASSERT_FALSE(candidates.empty());
+  EXPECT_GT(candidates.front().area, 40000u);  // the floor and the ball, one region
+  candidateRegions(&segmenter, bgr, permissive, &floor, 20, &candidates);
+  EXPECT_EQ(nearBall(candidates), 1);
+  for (const Region& r : candidates) EXPECT_EQ(r.label, 2);  // the floor's own regions are not candidates
 }
 
 }  // namespace
