@@ -63,8 +63,9 @@ class BlobVerifier {
   const ColorClass& candidateRange() const { return candidate_range_; }
 
   // The models and the candidate range as a YAML or XML file (OpenCV FileStorage; a name
-  // ending in .gz is compressed), with the feature count checked on load. Both throw std::runtime_error with the path and the reason.
-  // `note` (how the model was made) goes at the top of the file as comment lines.
+  // ending in .gz is compressed), with the feature count checked on load. Both throw
+  // std::runtime_error with the path and the reason. `note` (how the model was made) goes at
+  // the top of the file as comment lines.
   void save(const std::string& path, const std::string& note = "") const;
   static BlobVerifier load(const std::string& path);
 
