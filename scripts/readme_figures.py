@@ -270,7 +270,7 @@ def eval_balls_by_date():
 def eval_verifier():
     d = load('eval_verifier')
     dates = sorted({k.split('.')[1] for k in d if k.startswith('dates.')})
-    methods = [('range', 'calibrated range alone'), ('candidates', 'candidates (range widened by %d)' % d['widen_levels']),
+    methods = [('range', 'calibrated range alone'), ('candidates', 'candidates (range covering each training date\'s, widened by %d)' % d['widen_levels']),
                ('verified', 'candidates + verifier'), ('verified_on_field', 'candidates + verifier, field side only')]
     rows = []
     for g in dates + ['pooled']:
