@@ -100,10 +100,11 @@ using Groups = std::vector<std::vector<std::string>>;
 ColorClass candidateRange(const Arguments& a, const Groups& groups, size_t skip) {
   std::vector<ColorClass> calibrated;
   for (size_t g = 0; g < groups.size(); ++g) {
+    if (g == skip) continue;
     std::vector<CalibrationExample> examples;
     for (const std::string& path : groups[g]) {
       CalibrationExample e = readYoloExample(path, a.label_class);
-      if (g != skip && !e.boxes.empty()) examples.push_back(std::move(e));
+      if (!e.boxes.empty()) examples.push_back(std::move(e));
     }
     if (!examples.empty()) calibrated.push_back(calibrateColorClass(examples, a.name).color_class);
   }
