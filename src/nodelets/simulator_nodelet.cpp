@@ -72,6 +72,8 @@ void SimulatorNodelet::onInit() {
   pnh.param<std::string>("frame_id", optical_frame_, "camera_optical_frame");
   pnh.param<std::string>("camera_frame", camera_frame_, "camera_link");
   pnh.param<std::string>("base_frame", base_frame_, "base_link");
+  int queue_size = 2;  // a camera's: a slow reader gets the newest frames, not old ones
+  pnh.param("queue_size", queue_size, 2);
   if (!std::isfinite(rate_hz_) || rate_hz_ <= 0 || rate_hz_ > 1000) {
     NODELET_FATAL("~rate_hz must be in (0, 1000], got %f", rate_hz_);
     throw std::invalid_argument("bad ~rate_hz");
@@ -79,6 +81,10 @@ void SimulatorNodelet::onInit() {
   if (encoding_ != "bgr8" && encoding_ != "rgb8" && encoding_ != "mono8" && encoding_ != "yuv422") {
     NODELET_FATAL("~encoding '%s' is not supported; use bgr8, rgb8, mono8 or yuv422", encoding_.c_str());
     throw std::invalid_argument("bad ~encoding");
+  }
+  if (queue_size < 1) {
+    NODELET_WARN("~queue_size must be >= 1, got %d: using 2", queue_size);
+    queue_size = 2;
   }
   SceneConfig scene;
   try {
@@ -100,8 +106,8 @@ void SimulatorNodelet::onInit() {
                scene.width, scene.height, encoding_.c_str(), rate_hz_, scene.boxes.size(), scene.noise_sigma);
 
   it_ = std::make_shared<image_transport::ImageTransport>(nh);
-  pub_camera_ = it_->advertiseCamera("image_raw", 2);
-  pub_labels_ = it_->advertise("ground_truth/labels", 2);
+  pub_camera_ = it_->advertiseCamera("image_raw", static_cast<uint32_t>(queue_size));
+  pub_labels_ = it_->advertise("ground_truth/labels", static_cast<uint32_t>(queue_size));
   pub_truth_ = nh.advertise<SceneTruth>("ground_truth/scene", 10);
 
   if (publish_tf_) {  // optical frame: x right, y down, z forward (REP 103)

@@ -88,7 +88,7 @@ class BagReplayTest(unittest.TestCase):
             if os.path.exists(old):
                 os.remove(old)
         record = subprocess.Popen(['roslaunch', 'rle_vision', 'record.launch', 'bag:=' + bag_path, 'outputs:=false',
-                                   'duration_s:=9'], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                   'duration_s:=12'], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                                   start_new_session=True)
         self.addCleanup(lambda: record.poll() is None and os.killpg(record.pid, signal.SIGINT))
         self.assertTrue(self.wait_for(lambda: os.path.exists(bag_path) and not os.path.exists(bag_path + '.active'),
@@ -98,7 +98,14 @@ class BagReplayTest(unittest.TestCase):
         self.assertTrue(self.wait_for(lambda: len(live['blobs']) >= FRAMES, 10 * SLOW), 'the live tracker missed frames')
         with rosbag.Bag(bag_path) as bag:
             counts = {t: bag.get_message_count(topic_filters=[t]) for t in ('/camera/image_raw', '/camera/camera_info', '/tf')}
-        self.assertEqual(counts['/camera/image_raw'], FRAMES, counts)
+            recorded = {m.header.stamp for _, m, _ in bag.read_messages(topics=['/camera/image_raw'])}
+        with self.lock:
+            frames = sorted(live['blobs'])
+        # Which frames the bag lacks (the first ones: the recorder connected late; the last ones:
+        # it stopped early; others: it fell behind) says where to look.
+        missing = [i for i, stamp in enumerate(frames) if stamp not in recorded]
+        self.assertEqual(counts['/camera/image_raw'], FRAMES, 'the bag holds %d images of %d, missing frames %s; %s' % (
+            counts['/camera/image_raw'], FRAMES, missing, counts))
         self.assertEqual(counts['/camera/camera_info'], FRAMES, counts)
 
         play = subprocess.Popen(['roslaunch', 'rle_vision', 'play.launch', 'bag:=' + bag_path, 'camera:=replay',
