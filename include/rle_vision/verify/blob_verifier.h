@@ -13,13 +13,8 @@
 #include <opencv2/core.hpp>
 
 #include "rle_vision/color/color_class.h"
+#include "rle_vision/verify/boosted_trees.h"  // also declares cv::ml::Boost
 #include "rle_vision/verify/candidate_features.h"
-
-namespace cv {
-namespace ml {
-class Boost;
-}  // namespace ml
-}  // namespace cv
 
 namespace rle_vision {
 
@@ -70,7 +65,10 @@ class BlobVerifier {
   static BlobVerifier load(const std::string& path);
 
  private:
+  void addModel(const cv::Ptr<cv::ml::Boost>& model);
+
   std::vector<cv::Ptr<cv::ml::Boost>> models_;
+  std::vector<BoostedTrees> flat_models_;  // the same models, scored without OpenCV's overhead
   ColorClass candidate_range_;
 };
 

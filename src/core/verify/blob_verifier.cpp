@@ -1,6 +1,7 @@
 #include "rle_vision/verify/blob_verifier.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -49,12 +50,27 @@ cv::Ptr<cv::ml::Boost> trainModel(const cv::Mat& features, const std::vector<int
   return model;
 }
 
+// Training makes models on every feature, all ordered (BoostedTrees relies on it): var_idx, when
+// written, is 0, 1, ..., and every var_type but the response's (the last) is ordered.
+bool everyVariableOrdered(const cv::FileNode& model) {
+  std::vector<int> var_type, var_idx;
+  model["var_type"] >> var_type;
+  model["var_idx"] >> var_idx;
+  if (var_type.empty() || !std::all_of(var_type.begin(), var_type.end() - 1, [](int t) { return t == cv::ml::VAR_ORDERED; })) {
+    return false;
+  }
+  for (size_t i = 0; i < var_idx.size(); ++i) {
+    if (var_idx[i] != static_cast<int>(i)) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 BlobVerifier BlobVerifier::train(const cv::Mat& features, const std::vector<int>& is_object,
                                  const VerifierTrainOptions& options) {
   BlobVerifier verifier;
-  verifier.models_.push_back(trainModel(features, is_object, options));
+  verifier.addModel(trainModel(features, is_object, options));
   return verifier;
 }
 
@@ -78,10 +94,15 @@ BlobVerifier BlobVerifier::trainAcrossGroups(const cv::Mat& features, const std:
       positives += is_object[i] != 0;
     }
     if (positives == 0 || positives == static_cast<int>(labels.size())) continue;
-    verifier.models_.push_back(trainModel(rows, labels, options));
+    verifier.addModel(trainModel(rows, labels, options));
   }
   if (verifier.models_.empty()) return train(features, is_object, options);
   return verifier;
+}
+
+void BlobVerifier::addModel(const cv::Ptr<cv::ml::Boost>& model) {
+  models_.push_back(model);
+  flat_models_.emplace_back(*model);
 }
 
 bool BlobVerifier::trained() const {
@@ -94,7 +115,13 @@ float BlobVerifier::score(const CandidateFeatures& features) const {
   // Real AdaBoost's sum estimates half the log-odds of the object class: the lowest sum gives
   // the lowest score.
   float lowest = std::numeric_limits<float>::infinity();
-  for (const auto& model : models_) lowest = std::min(lowest, model->predict(row, cv::noArray(), cv::ml::DTrees::PREDICT_SUM));
+  // OpenCV reads FLT_MAX as a missing value its own way (the features never hold it).
+  const bool missing = std::find(features.begin(), features.end(), FLT_MAX) != features.end();
+  for (size_t i = 0; i < models_.size(); ++i) {
+    const float sum = flat_models_[i].usable() && !missing ? flat_models_[i].sum(features.data())
+                                               : models_[i]->predict(row, cv::noArray(), cv::ml::DTrees::PREDICT_SUM);
+    lowest = std::min(lowest, sum);
+  }
   return 1.0f / (1.0f + std::exp(-2.0f * lowest));
 }
 
@@ -154,8 +181,13 @@ BlobVerifier BlobVerifier::load(const std::string& path) {
   if (root["models"].empty()) nodes.push_back(root["model"]);
   for (const cv::FileNode& node : root["models"]) nodes.push_back(node);
   for (const cv::FileNode& node : nodes) {
-    verifier.models_.push_back(cv::ml::Boost::create());
-    verifier.models_.back()->read(node);
+    if (!everyVariableOrdered(node)) {
+      throw std::runtime_error(path + ": a model in the verifier file uses categorical variables or a subset of the "
+                               "features, which rle_vision_train never makes");
+    }
+    cv::Ptr<cv::ml::Boost> model = cv::ml::Boost::create();
+    model->read(node);
+    verifier.addModel(model);
   }
   if (!verifier.trained()) throw std::runtime_error(path + ": the verifier file holds no trained model");
   return verifier;
