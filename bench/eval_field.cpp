@@ -4,11 +4,18 @@
 // the grouping make eval reports its worst of). Each frame stands alone: the field colour is
 // seeded on it, nothing is tuned on these frames.
 //
-//   rle_vision_eval_field [--margin-px N] [--json OUT] DIR
+//   rle_vision_eval_field [--margin-px N] [--json OUT] [--sheet PNG [--sheet-class C]] DIR
+//
+// --sheet draws every object of class C (default 1, the robots) that it puts off the field side
+// into one contact sheet, the boundary in magenta and the box in red, each tile numbered and
+// labelled with how far above the boundary the box's bottom is (px): whether those objects
+// stand on this field at all (another field, the hall floor beside the carpet, a ball in the air)
+// is for a person to see, since the labels do not say.
 //
 // DIR's folders are the dates; each holds folders of images with YOLO label files beside them
 // (classes 0 ball, 1 obstacle, 2 human, as robocup_ml's obj.names).
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -16,6 +23,7 @@
 #include <vector>
 
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "harness.h"
 #include "rle_vision/field/field_detector.h"
@@ -40,8 +48,45 @@ struct DateScore {
   double foundPct() const { return frames ? 100.0 * found / frames : 0; }
 };
 
+// The off-field objects of one class, a tile each (the frame around the box, the boundary drawn).
+struct OffFieldSheet {
+  static constexpr int kTile = 200;
+  int label_class = 1;
+  std::vector<cv::Mat> tiles;
+  std::vector<std::string> captions;
+
+  void add(const cv::Mat& image, const FieldBoundaryEstimate& boundary, const cv::Rect& box, double above,
+           const std::string& path) {
+    cv::Mat drawn = image.clone();
+    for (size_t i = 1; i < boundary.polyline.size(); ++i) {
+      cv::line(drawn, boundary.polyline[i - 1], boundary.polyline[i], cv::Scalar(255, 0, 255), 2);
+    }
+    cv::rectangle(drawn, box, cv::Scalar(0, 0, 255), 2);
+    const cv::Point centre(box.x + box.width / 2, box.y + box.height / 2);
+    const cv::Rect crop = cv::Rect(centre.x - kTile / 2, centre.y - kTile / 2, kTile, kTile) & cv::Rect(cv::Point(), image.size());
+    cv::Mat tile(kTile, kTile, CV_8UC3, cv::Scalar::all(0));
+    drawn(crop).copyTo(tile(cv::Rect(crop.x - (centre.x - kTile / 2), crop.y - (centre.y - kTile / 2), crop.width, crop.height)));
+    const std::string caption = std::to_string(tiles.size()) + ": " + std::to_string(static_cast<int>(std::lround(above))) + " px";
+    cv::putText(tile, caption, cv::Point(4, 16), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 255, 255), 1);
+    tiles.push_back(tile);
+    captions.push_back(caption + " above, " + path);
+  }
+
+  // The tiles, 8 to a row; false when there are none or the file cannot be written.
+  bool write(const std::string& png) const {
+    constexpr int kColumns = 8;
+    if (tiles.empty()) return false;
+    const int rows = static_cast<int>((tiles.size() + kColumns - 1) / kColumns);
+    cv::Mat sheet(rows * kTile, kColumns * kTile, CV_8UC3, cv::Scalar::all(40));
+    for (size_t i = 0; i < tiles.size(); ++i) {
+      tiles[i].copyTo(sheet(cv::Rect(static_cast<int>(i % kColumns) * kTile, static_cast<int>(i / kColumns) * kTile, kTile, kTile)));
+    }
+    return cv::imwrite(png, sheet);
+  }
+};
+
 // One frame: the boundary, and each labelled object's bottom centre against it.
-void scoreFrame(const std::string& path, double margin_px, DateScore* s) {
+void scoreFrame(const std::string& path, double margin_px, DateScore* s, OffFieldSheet* sheet) {
   const cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
   if (image.empty()) return;
   FieldDetector detector;  // seeded on this frame alone
@@ -56,6 +101,7 @@ void scoreFrame(const std::string& path, double margin_px, DateScore* s) {
       const double above = field.boundary.heightAbove(box.x + 0.5 * box.width, box.y + box.height - 1);
       ++s->classes[c].objects;
       s->classes[c].on_field += above <= margin_px;
+      if (sheet && c == sheet->label_class && above > margin_px) sheet->add(image, field.boundary, box, above, path);
     }
   }
 }
@@ -79,7 +125,8 @@ void addValues(const std::string& key, const DateScore& s, std::vector<std::pair
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string json;
+  std::string json, sheet_png;
+  OffFieldSheet sheet;
   double margin_px = 8;
   std::string root;
   for (int i = 1; i < argc; ++i) {
@@ -88,6 +135,10 @@ int main(int argc, char** argv) {
       json = argv[++i];
     } else if (arg == "--margin-px" && i + 1 < argc) {
       margin_px = std::stod(argv[++i]);
+    } else if (arg == "--sheet" && i + 1 < argc) {
+      sheet_png = argv[++i];
+    } else if (arg == "--sheet-class" && i + 1 < argc) {
+      sheet.label_class = std::stoi(argv[++i]);
     } else {
       root = arg;
     }
@@ -100,7 +151,8 @@ int main(int argc, char** argv) {
   }
   std::sort(dates.begin(), dates.end());
   if (dates.empty()) {
-    std::fprintf(stderr, "usage: rle_vision_eval_field [--margin-px N] [--json OUT] DIR (its folders: the dates)\n");
+    std::fprintf(stderr, "usage: rle_vision_eval_field [--margin-px N] [--json OUT] [--sheet PNG [--sheet-class C]] DIR "
+                         "(its folders: the dates)\n");
     return 2;
   }
   bench::pinToOneCpu();
@@ -114,7 +166,7 @@ int main(int argc, char** argv) {
   double worst_robots = 100;
   for (const std::string& dir : dates) {
     DateScore s;
-    for (const std::string& path : imagesUnderFolder(dir)) scoreFrame(path, margin_px, &s);
+    for (const std::string& path : imagesUnderFolder(dir)) scoreFrame(path, margin_px, &s, sheet_png.empty() ? nullptr : &sheet);
     const std::string name = std::filesystem::path(dir).filename().string();
     printRow(name, s);
     addValues("dates." + name, s, &values);
@@ -128,5 +180,10 @@ int main(int argc, char** argv) {
   addValues("all", all, &values);
   values.emplace_back("worst_date_obstacle_on_field_pct", worst_robots);
   if (!json.empty()) bench::writeJson(json, values);
+  if (!sheet_png.empty()) {
+    for (const std::string& caption : sheet.captions) std::printf("  off the field side, tile %s\n", caption.c_str());
+    std::printf("%s: %zu objects of class %d off the field side%s\n", sheet_png.c_str(), sheet.tiles.size(), sheet.label_class,
+                sheet.write(sheet_png) ? "" : " (none drawn: none, or the file cannot be written)");
+  }
   return 0;
 }
