@@ -77,7 +77,7 @@ class VerifierPipelineTest(unittest.TestCase):
 
         def on_diagnostics(msg):
             with lock:
-                statuses.extend(s for s in msg.status if s.name.endswith('tracker'))
+                statuses.extend((msg.header.stamp, s) for s in msg.status if s.name.endswith('tracker'))
 
         rospy.Subscriber('/%s/blobs' % CAMERA, BlobArray, on_blobs, queue_size=20)
         rospy.Subscriber('/diagnostics', DiagnosticArray, on_diagnostics, queue_size=20)
@@ -89,8 +89,11 @@ class VerifierPipelineTest(unittest.TestCase):
         try:
             require(lambda: pub.get_num_connections() > 0, 60 * SLOW, 'the pipeline subscribing to the image')
             found = self.publish_unseen_frames(pub, blobs, lock)
-            rejected = require(lambda: self.rejected_total(statuses, lock), 10 * SLOW,
-                               'diagnostics counting rejected candidates')
+            # The total as reported after the last frame's blobs came back: a report from before
+            # (diagnostics come once a second) would miss the last frames' rejections.
+            after = rospy.Time.now()
+            rejected, = require(lambda: self.rejected_total(statuses, lock, after), 10 * SLOW,
+                                'diagnostics counting rejected candidates after the last frame')
         finally:
             os.killpg(pipeline.pid, signal.SIGINT)
             pipeline.wait(timeout=30 * SLOW)
@@ -125,13 +128,16 @@ class VerifierPipelineTest(unittest.TestCase):
         return found
 
     @staticmethod
-    def rejected_total(statuses, lock):
+    def rejected_total(statuses, lock, after):
+        """[the rejected total] of the newest tracker report stamped after `after`; None before one."""
         with lock:
-            for status in reversed(statuses):
+            for stamp, status in reversed(statuses):
+                if stamp <= after:
+                    return None
                 for kv in status.values:
                     if kv.key == 'verifier candidates rejected under min_score (total)':
-                        return int(kv.value)
-        return 0
+                        return [int(kv.value)]
+        return None
 
 
 if __name__ == '__main__':
