@@ -88,7 +88,7 @@ class BagReplayTest(unittest.TestCase):
             if os.path.exists(old):
                 os.remove(old)
         record = subprocess.Popen(['roslaunch', 'rle_vision', 'record.launch', 'bag:=' + bag_path, 'outputs:=false',
-                                   'duration_s:=12'], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                   'duration_s:=20'], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                                   start_new_session=True)
         self.addCleanup(lambda: record.poll() is None and os.killpg(record.pid, signal.SIGINT))
         self.assertTrue(self.wait_for(lambda: os.path.exists(bag_path) and not os.path.exists(bag_path + '.active'),

@@ -96,7 +96,7 @@ class SequenceEqualsNodeletsTest(unittest.TestCase):
                         'the pipeline never subscribed to the camera')
         # Each nodelet subscribes to the image in its own connect callback, run on the manager's
         # threads just after the connections above: a moment for those callbacks to run.
-        time.sleep(1.0)
+        time.sleep(1.0 * SLOW)
 
         in_use = []
         for k, msg in enumerate(frames):
