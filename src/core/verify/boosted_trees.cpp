@@ -13,7 +13,7 @@ BoostedTrees::BoostedTrees(const cv::ml::Boost& model) {
     Node flat{-1, 0.0f, n.left, n.right, n.value};
     if (n.split >= 0) {
       const cv::ml::DTrees::Split& s = splits[static_cast<size_t>(n.split)];
-      if (s.inversed || s.varIdx < 0) {  // not what training makes: left to OpenCV
+      if (s.inversed || s.varIdx < 0 || s.varIdx >= model.getVarCount()) {  // not what training makes: left to OpenCV
         nodes_.clear();
         return;
       }
