@@ -25,6 +25,25 @@ struct Run {
 // neighbour), though the first may grow by the flips after it.
 void appendRowRuns(const uint8_t* labels, int width, int y, std::vector<Run>* runs, int max_flip_px = 0);
 
+// appendRowRuns with its buffers kept from row to row (one per thread, as appendRowRuns keeps
+// one per thread). With the flip filter a noisy row is worked on 64 pixels at a time, a clean
+// one stretch by stretch; which way is told by the row before (the runs are the same either way).
+// The flip filter's buffers for noisy rows (the labels with room around them, rows of bits).
+struct FlipFilterWordBuffers {
+  std::vector<uint8_t> padded_labels;
+  std::vector<uint64_t> bits;
+};
+
+class RowRunEncoder {
+ public:
+  void append(const uint8_t* labels, int width, int y, std::vector<Run>* runs, int max_flip_px = 0);
+
+ private:
+  std::vector<Run> row_buffer_;
+  FlipFilterWordBuffers word_buffers_;
+  bool noisy_row_before_ = false;
+};
+
 // Run-length encodes a whole CV_8UC1 label image given as rows: fills `runs` (row-major order)
 // and `row_starts` (size rows + 1; the runs of row y are [row_starts[y], row_starts[y + 1])).
 void encodeLabelRows(const uint8_t* const* rows, int width, int height, std::vector<Run>* runs,

@@ -44,6 +44,7 @@ class Segmenter {
   SegmenterOptions options_;
   PixelClassifier classifier_;
   RegionBuilder builder_;
+  RowRunEncoder row_encoder_;
   std::vector<uint8_t> labels_;
   std::vector<Run> runs_;
   std::vector<int32_t> row_starts_;

@@ -18,7 +18,7 @@ void Segmenter::segment(const cv::Mat& image, PixelFormat format, const ColorTab
   for (int y = 0; y < height; ++y) {
     row_starts_[y] = static_cast<int32_t>(runs_.size());
     classifier_.classifyRow(image.ptr<uint8_t>(y), width, format, table, labels_.data());
-    appendRowRuns(labels_.data(), width, y, &runs_, options_.flip_filter_px);
+    row_encoder_.append(labels_.data(), width, y, &runs_, options_.flip_filter_px);
   }
   row_starts_[height] = static_cast<int32_t>(runs_.size());
 

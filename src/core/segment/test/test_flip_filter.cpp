@@ -1,6 +1,7 @@
 // The run-length encoder's flip filter (flip_filter_px): short stretches between two of one
 // label take that label, so sensor noise neither cuts runs nor makes specks.
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -79,29 +80,88 @@ TEST(FlipFilter, FillsShortStretchesBetweenTwoOfOneLabel) {
   expectRuns(runs, {{0, 7, 2}});
 }
 
+// Rows from sparse to every pixel its own draw, and rows of short stretches only (chains of
+// candidates, where every other one is joined), of every width around the 32- and 64-pixel
+// words the encoder works in: noisy rows take the word-parallel filter, sparse ones the
+// per-start one, and both must give the plain filter's runs.
+std::vector<uint8_t> randomRow(std::mt19937* rng, int width, int change_per_mille, int max_stretch_px,
+                               int label_count) {
+  std::vector<uint8_t> row(width);
+  int left_in_stretch = 0;
+  for (int x = 0; x < width; ++x) {
+    bool change = x == 0;
+    if (max_stretch_px > 0) {
+      change = change || left_in_stretch == 0;
+      if (change) left_in_stretch = 1 + static_cast<int>((*rng)() % static_cast<unsigned>(max_stretch_px));
+      --left_in_stretch;
+    } else {
+      change = change || static_cast<int>((*rng)() % 1000) < change_per_mille;
+    }
+    row[x] = change ? static_cast<uint8_t>((*rng)() % static_cast<unsigned>(label_count)) : row[x - 1];
+  }
+  return row;
+}
+
+void expectPlainFilterRuns(const std::vector<uint8_t>& row, int max_flip_px, const std::string& what) {
+  const int width = static_cast<int>(row.size());
+  // Appended after the runs of earlier rows: each run's parent is its own index.
+  std::vector<rle_vision::Run> runs(3, rle_vision::Run{0, 0, 4, 0, 1});
+  appendRowRuns(row.data(), width, 5, &runs, max_flip_px);
+  const std::vector<rle_vision::Run> expected = referenceFilteredRuns(row, 5, max_flip_px);
+  ASSERT_EQ(runs.size(), expected.size() + 3) << what;
+  for (size_t i = 0; i < expected.size(); ++i) {
+    const rle_vision::Run& run = runs[i + 3];
+    ASSERT_EQ(run.x0, expected[i].x0) << what << " run " << i;
+    ASSERT_EQ(run.x1, expected[i].x1) << what << " run " << i;
+    ASSERT_EQ(run.label, expected[i].label) << what << " run " << i;
+    ASSERT_EQ(run.y, 5);
+    ASSERT_EQ(run.parent, static_cast<int32_t>(i + 3));
+  }
+}
+
 TEST(FlipFilter, EqualsThePlainFilterOnRandomRows) {
   std::mt19937 rng(11);
-  for (int width : {1, 2, 3, 7, 8, 9, 31, 32, 33, 63, 64, 65, 100, 640}) {
-    for (int change_per_mille : {0, 100, 400, 1000}) {
-      for (int max_flip_px : {1, 2, 3}) {
-        std::vector<uint8_t> row(width);
-        for (int x = 0; x < width; ++x) {
-          const bool change = x == 0 || static_cast<int>(rng() % 1000) < change_per_mille;
-          row[x] = change ? static_cast<uint8_t>(rng() % 3) : row[x - 1];
+  for (int width : {1, 2, 3, 7, 8, 9, 31, 32, 33, 63, 64, 65, 100, 127, 128, 129, 640, 641}) {
+    for (int max_flip_px : {1, 2, 3, 5, 8}) {
+      for (int trial = 0; trial < 6; ++trial) {
+        for (int change_per_mille : {0, 30, 100, 400, 1000}) {
+          const std::vector<uint8_t> row = randomRow(&rng, width, change_per_mille, 0, 3);
+          expectPlainFilterRuns(row, max_flip_px, "width " + std::to_string(width) + " flip " +
+                                                      std::to_string(max_flip_px) + " per mille " +
+                                                      std::to_string(change_per_mille));
         }
-        // Appended after the runs of earlier rows: each run's parent is its own index.
-        std::vector<rle_vision::Run> runs(3, rle_vision::Run{0, 0, 4, 0, 1});
-        appendRowRuns(row.data(), width, 5, &runs, max_flip_px);
-        const std::vector<rle_vision::Run> expected = referenceFilteredRuns(row, 5, max_flip_px);
-        ASSERT_EQ(runs.size(), expected.size() + 3) << "width " << width << " flip " << max_flip_px;
-        for (size_t i = 0; i < expected.size(); ++i) {
-          const rle_vision::Run& run = runs[i + 3];
-          ASSERT_EQ(run.x0, expected[i].x0) << "width " << width << " run " << i;
-          ASSERT_EQ(run.x1, expected[i].x1);
-          ASSERT_EQ(run.label, expected[i].label);
-          ASSERT_EQ(run.y, 5);
-          ASSERT_EQ(run.parent, static_cast<int32_t>(i + 3));
+        for (int max_stretch_px : {1, max_flip_px, max_flip_px + 1, 2 * max_flip_px + 2}) {
+          const std::vector<uint8_t> row = randomRow(&rng, width, 0, max_stretch_px, 2 + trial % 2);
+          expectPlainFilterRuns(row, max_flip_px, "width " + std::to_string(width) + " flip " +
+                                                      std::to_string(max_flip_px) + " stretches up to " +
+                                                      std::to_string(max_stretch_px));
         }
+      }
+    }
+  }
+  // Every label value a row may hold, 0 to 255.
+  const std::vector<uint8_t> many = randomRow(&rng, 640, 0, 3, 256);
+  expectPlainFilterRuns(many, 2, "labels 0-255");
+}
+
+// One encoder over an image whose rows go from clean to noisy and back, as a camera's do: a row
+// after a noisy one is worked on 64 pixels at a time, a row after a clean one stretch by
+// stretch, and whichever way a row goes, its runs are the plain filter's.
+TEST(FlipFilter, OneEncoderOverCleanAndNoisyRowsGivesThePlainFiltersRuns) {
+  std::mt19937 rng(23);
+  for (int max_flip_px : {1, 2, 4}) {
+    RowRunEncoder encoder;
+    for (int y = 0; y < 60; ++y) {
+      const int per_mille = (y / 5) % 3 == 0 ? 5 : ((y / 5) % 3 == 1 ? 300 : 1000);
+      const std::vector<uint8_t> row = randomRow(&rng, 200 + y, per_mille, 0, 3);
+      std::vector<rle_vision::Run> runs;
+      encoder.append(row.data(), static_cast<int>(row.size()), y, &runs, max_flip_px);
+      const std::vector<rle_vision::Run> expected = referenceFilteredRuns(row, y, max_flip_px);
+      ASSERT_EQ(runs.size(), expected.size()) << "row " << y << " flip " << max_flip_px;
+      for (size_t i = 0; i < expected.size(); ++i) {
+        ASSERT_EQ(runs[i].x0, expected[i].x0) << "row " << y << " run " << i;
+        ASSERT_EQ(runs[i].x1, expected[i].x1) << "row " << y << " run " << i;
+        ASSERT_EQ(runs[i].label, expected[i].label) << "row " << y << " run " << i;
       }
     }
   }
