@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -122,6 +123,20 @@ void addValues(const std::string& key, const DateScore& s, std::vector<std::pair
   }
 }
 
+// True when the whole of `text` is one finite number.
+bool wholeArgumentNumber(const char* text, double* value) {
+  char* end = nullptr;
+  *value = std::strtod(text, &end);
+  return end != text && *end == '\0' && std::isfinite(*value);
+}
+
+int usage(const std::string& problem) {
+  if (!problem.empty()) std::fprintf(stderr, "rle_vision_eval_field: %s\n", problem.c_str());
+  std::fprintf(stderr, "usage: rle_vision_eval_field [--margin-px N] [--json OUT] [--sheet PNG [--sheet-class C]] DIR "
+                       "(its folders: the dates)\n");
+  return 2;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -134,11 +149,16 @@ int main(int argc, char** argv) {
     if (arg == "--json" && i + 1 < argc) {
       json = argv[++i];
     } else if (arg == "--margin-px" && i + 1 < argc) {
-      margin_px = std::stod(argv[++i]);
+      if (!wholeArgumentNumber(argv[++i], &margin_px) || margin_px < 0) return usage("--margin-px needs a number >= 0");
     } else if (arg == "--sheet" && i + 1 < argc) {
       sheet_png = argv[++i];
     } else if (arg == "--sheet-class" && i + 1 < argc) {
-      sheet.label_class = std::stoi(argv[++i]);
+      double label_class = -1;
+      if (!wholeArgumentNumber(argv[++i], &label_class) || label_class < 0 || label_class != std::floor(label_class) ||
+          label_class > 999999) {
+        return usage("--sheet-class needs a whole number >= 0");
+      }
+      sheet.label_class = static_cast<int>(label_class);
     } else {
       root = arg;
     }
@@ -150,11 +170,7 @@ int main(int argc, char** argv) {
     }
   }
   std::sort(dates.begin(), dates.end());
-  if (dates.empty()) {
-    std::fprintf(stderr, "usage: rle_vision_eval_field [--margin-px N] [--json OUT] [--sheet PNG [--sheet-class C]] DIR "
-                         "(its folders: the dates)\n");
-    return 2;
-  }
+  if (dates.empty()) return usage("");
   bench::pinToOneCpu();
   std::printf("rle_vision eval (field boundary): each frame alone (field colour seeded on it); an object is on the "
               "field side when its box's bottom centre is at most %.0f px above the boundary\n",
