@@ -25,15 +25,16 @@ struct Run {
 // neighbour), though the first may grow by the flips after it.
 void appendRowRuns(const uint8_t* labels, int width, int y, std::vector<Run>* runs, int max_flip_px = 0);
 
-// appendRowRuns with its buffers kept from row to row (one per thread, as appendRowRuns keeps
-// one per thread). With the flip filter a noisy row is worked on 64 pixels at a time, a clean
-// one stretch by stretch; which way is told by the row before (the runs are the same either way).
 // The flip filter's buffers for noisy rows (the labels with room around them, rows of bits).
 struct FlipFilterWordBuffers {
   std::vector<uint8_t> padded_labels;
   std::vector<uint64_t> bits;
 };
 
+// appendRowRuns with its buffers kept from row to row (use one per thread; appendRowRuns keeps
+// one per thread). With the flip filter (max_flip_px up to 8, on a CPU with AVX2) a row after a
+// noisy row is worked on 64 pixels at a time, others stretch by stretch; the runs are the same
+// either way.
 class RowRunEncoder {
  public:
   void append(const uint8_t* labels, int width, int y, std::vector<Run>* runs, int max_flip_px = 0);

@@ -67,15 +67,15 @@ inline uint64_t belowMask(int w, int limit) {
 }
 
 // The stretch starts of a row (bit 0 set; pixels from `width` on set too, so the last stretch
-// ends there); returns how many starts lie in the row.
+// ends there); returns how many starts lie in the row, the first pixel's included.
 int stretchStarts(const uint8_t* row, int width, int words, uint64_t* starts) {
   equalBits(row, row - 1, words, starts);
   int count = 0;
   for (int w = 0; w < words; ++w) {
     starts[w] = ~starts[w] | ~belowMask(w, width);
+    if (w == 0) starts[0] |= 1;  // row[-1] is padding
     count += __builtin_popcountll(starts[w] & belowMask(w, width));
   }
-  starts[0] |= 1;
   starts[words] = ~uint64_t{0};
   return count;
 }
@@ -102,11 +102,12 @@ void keptRunStarts(const uint64_t* starts, const uint64_t* equal, int words, uin
       previous_candidates[m] = found;
     }
     const uint64_t parity = prefixParity(starts[w]) ^ (parity_carry ? ~uint64_t{0} : 0);
-    // Chains whose first candidate has an odd index: adding their first bit clears them.
-    uint64_t odd_firsts = chain & ~((chain << 1) | static_cast<uint64_t>(chain_carry)) & parity;
-    if (chain_carry && first_parity_carry) odd_firsts |= 1;
-    const uint64_t odd_chains = chain & ~(chain + odd_firsts);
-    const uint64_t joined = candidates & ~(parity ^ odd_chains);
+    // Chains whose first candidate has its parity bit set: adding their first bit clears them,
+    // which marks their every pixel. A candidate is joined where its parity is its chain's first's.
+    uint64_t set_firsts = chain & ~((chain << 1) | static_cast<uint64_t>(chain_carry)) & parity;
+    if (chain_carry && first_parity_carry) set_firsts |= 1;
+    const uint64_t set_chains = chain & ~(chain + set_firsts);
+    const uint64_t joined = candidates & ~(parity ^ set_chains);
     uint64_t dropped = joined;
     for (int m = 1; m <= kMaxFlip; ++m) {
       const uint64_t joined_m = joined & candidates_of_length[m];
@@ -116,7 +117,7 @@ void keptRunStarts(const uint64_t* starts, const uint64_t* equal, int words, uin
     kept[w] = starts[w] & ~dropped;
     parity_carry = parity >> 63;
     chain_carry = chain >> 63;
-    first_parity_carry = odd_chains >> 63;
+    first_parity_carry = set_chains >> 63;
   }
 }
 
