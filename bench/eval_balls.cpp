@@ -148,8 +148,7 @@ int main(int argc, char** argv) {
       folders.push_back(arg);
     }
   }
-  if (calibrate_dir.empty() || folders.empty() || label_class.find_first_not_of("0123456789") != std::string::npos ||
-      label_class.empty() || label_class.size() > 6) {
+  if (calibrate_dir.empty() || folders.empty() || !bench::isWholeNumber(label_class, 6)) {
     std::cerr << "usage: rle_vision_eval_balls --calibrate DIR [--label-class N] [--json OUT] DIR...\n";
     return 2;
   }

@@ -126,8 +126,7 @@ int main(int argc, char** argv) {
     }
   }
   const std::vector<Date> dates = bench::labelledDates(root);
-  if (dates.size() < 2 || label_class.empty() || label_class.find_first_not_of("0123456789") != std::string::npos ||
-      label_class.size() > 6) {
+  if (dates.size() < 2 || !bench::isWholeNumber(label_class, 6)) {
     std::cerr << "usage: rle_vision_eval_balls_by_date [--label-class N] [--json OUT] DIR (its folders: two or more "
                  "dates)\n";
     return 2;

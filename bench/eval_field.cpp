@@ -153,12 +153,9 @@ int main(int argc, char** argv) {
     } else if (arg == "--sheet" && i + 1 < argc) {
       sheet_png = argv[++i];
     } else if (arg == "--sheet-class" && i + 1 < argc) {
-      double label_class = -1;
-      if (!wholeArgumentNumber(argv[++i], &label_class) || label_class < 0 || label_class != std::floor(label_class) ||
-          label_class > 999999) {
-        return usage("--sheet-class needs a whole number >= 0");
-      }
-      sheet.label_class = static_cast<int>(label_class);
+      const std::string label_class = argv[++i];
+      if (!bench::isWholeNumber(label_class, 6)) return usage("--sheet-class needs a whole number >= 0");
+      sheet.label_class = std::stoi(label_class);
     } else {
       root = arg;
     }

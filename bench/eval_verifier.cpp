@@ -249,9 +249,7 @@ int main(int argc, char** argv) {
     }
   }
   const std::vector<Date> dates = bench::labelledDates(root);
-  const bool numbers = !label_class.empty() && label_class.find_first_not_of("0123456789") == std::string::npos &&
-                       label_class.size() <= 6 && !widen.empty() && widen.find_first_not_of("0123456789") == std::string::npos &&
-                       widen.size() <= 3;
+  const bool numbers = bench::isWholeNumber(label_class, 6) && bench::isWholeNumber(widen, 3);
   if (dates.size() < 2 || !numbers) {
     std::cerr << "usage: rle_vision_eval_verifier [--label-class N] [--widen LEVELS] [--compare-models] [--json OUT] DIR "
                  "(its folders: "

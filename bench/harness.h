@@ -60,6 +60,11 @@ inline void keep(const T& value) {
   asm volatile("" : : "g"(&value) : "memory");
 }
 
+// True when a command-line value is a whole number of 1 to max_digits digits (a label class).
+inline bool isWholeNumber(const std::string& text, size_t max_digits) {
+  return !text.empty() && text.size() <= max_digits && text.find_first_not_of("0123456789") == std::string::npos;
+}
+
 // Pins the process to one CPU so one-thread figures are one-core figures.
 inline void pinToOneCpu() {
   cpu_set_t set;

@@ -2,19 +2,13 @@
 
 #include "rle_vision/color/color_convert.h"
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(RLE_VISION_NO_MULTIVERSION)
-#define RLE_VISION_HAVE_AVX2_KERNEL 1
-#include <immintrin.h>
-#endif
+#include "common/simd_dispatch.h"
 
 namespace rle_vision {
 
-#ifdef RLE_VISION_HAVE_AVX2_KERNEL
+#ifdef RLE_VISION_AVX2_KERNELS
 
-bool yuvClassifyAvx2Available() {
-  static const bool available = __builtin_cpu_supports("avx2");
-  return available;
-}
+bool yuvClassifyAvx2Available() { return cpuHasAvx2(); }
 
 namespace {
 

@@ -3,19 +3,13 @@
 #include <cstring>
 #include <vector>
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(RLE_VISION_NO_MULTIVERSION)
-#define RLE_VISION_HAVE_AVX2_FLIP_WORDS 1
-#include <immintrin.h>
-#endif
+#include "common/simd_dispatch.h"
 
 namespace rle_vision {
 
-#ifdef RLE_VISION_HAVE_AVX2_FLIP_WORDS
+#ifdef RLE_VISION_AVX2_KERNELS
 
-bool flipFilterWordsAvailable() {
-  static const bool available = __builtin_cpu_supports("avx2");
-  return available;
-}
+bool flipFilterWordsAvailable() { return cpuHasAvx2(); }
 
 namespace {
 

@@ -1,15 +1,11 @@
 #include "rle_vision/segment/run_length.h"
 
-#include "segment/flip_filter_words.h"
-#include "segment/row_encoders.h"
-
 #include <algorithm>
 #include <cstring>
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(RLE_VISION_NO_MULTIVERSION)
-#define RLE_VISION_HAVE_AVX2_RLE 1
-#include <immintrin.h>
-#endif
+#include "common/simd_dispatch.h"
+#include "segment/flip_filter_words.h"
+#include "segment/row_encoders.h"
 
 namespace rle_vision {
 namespace {
@@ -44,12 +40,7 @@ int scanWords(const uint8_t* labels, int width, int x, Row* row) {
   return x;
 }
 
-#ifdef RLE_VISION_HAVE_AVX2_RLE
-bool avx2Available() {
-  static const bool available = __builtin_cpu_supports("avx2");
-  return available;
-}
-
+#ifdef RLE_VISION_AVX2_KERNELS
 // The same with 32 labels at a time. The row is worked on as a local copy, so its state stays
 // in registers.
 template <typename Row>
@@ -71,8 +62,8 @@ __attribute__((target("avx2"))) int scanAvx2(const uint8_t* labels, int width, i
 template <typename Row>
 int32_t encodeRow(const uint8_t* labels, int width, Row* row) {
   int x = 1;
-#ifdef RLE_VISION_HAVE_AVX2_RLE
-  if (avx2Available()) x = scanAvx2(labels, width, x, row);
+#ifdef RLE_VISION_AVX2_KERNELS
+  if (cpuHasAvx2()) x = scanAvx2(labels, width, x, row);
 #endif
   x = scanWords(labels, width, x, row);
   for (; x < width; ++x) {
