@@ -2,6 +2,8 @@
 // per run, so fitting a line to an edge object costs O(runs), not O(pixels).
 #pragma once
 
+#include <cstdint>
+
 #include "rle_vision/landmark/line_geometry.h"
 
 namespace rle_vision {
@@ -19,8 +21,20 @@ struct PointSums {
     sxy += weight * x * y;
     syy += weight * y * y;
   }
-  // Pixels x0..x1 (inclusive) of row y.
-  void addRun(int x0, int x1, int y);
+  // Pixels x0..x1 (inclusive) of row y, in closed form (inline: the Hough's band scans add
+  // every unclaimed stretch through it). Integer sums: exact, as pixel by pixel.
+  void addRun(int x0, int x1, int y) {
+    const int64_t count = x1 - x0 + 1;
+    const int64_t sum_x = (static_cast<int64_t>(x0) + x1) * count / 2;
+    // Sum of x^2 for x = x0..x1.
+    const auto squares = [](int64_t k) { return k * (k + 1) * (2 * k + 1) / 6; };
+    n += static_cast<double>(count);
+    sx += static_cast<double>(sum_x);
+    sy += static_cast<double>(count * y);
+    sxx += static_cast<double>(squares(x1) - squares(x0 - 1));
+    sxy += static_cast<double>(sum_x * y);
+    syy += static_cast<double>(count * y * y);
+  }
   void add(const PointSums& other);
 
   // Total least squares (principal axis) line through the points. `rms` receives the rms

@@ -48,7 +48,7 @@ class RidgeFitter {
   void splitAndFit(size_t first, size_t last, const RidgeFitOptions& o, double min_length, int depth,
                    std::vector<RidgeFit>* fits);
 
-  std::vector<double> profile_;
+  std::vector<double> profile_, offset_x_, offset_y_;  // a profile and its samples' offsets
   std::vector<RidgePoint> points_, inliers_;
   std::vector<double> residuals_, sorted_, deviation_;
 };

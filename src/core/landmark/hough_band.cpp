@@ -3,11 +3,45 @@
 namespace rle_vision {
 namespace hough {
 
-std::vector<Interval> pieces(std::vector<Interval>* intervals, double max_gap) {
-  // Rows are visited in order, so the intervals mostly come sorted one way or the other.
+namespace {
+
+// Sorts by t0 a list that is a few sorted stretches one after another (a band's rows, each
+// in order along the line one way or the other): each stretch is put in ascending order, then
+// neighbouring stretches are merged, O(n log stretches) where std::sort would be O(n log n).
+void sortStretches(std::vector<Interval>* list, std::vector<Interval>* scratch) {
   const auto before = [](const Interval& a, const Interval& b) { return a.t0 < b.t0; };
-  if (std::is_sorted(intervals->rbegin(), intervals->rend(), before)) std::reverse(intervals->begin(), intervals->end());
-  if (!std::is_sorted(intervals->begin(), intervals->end(), before)) std::sort(intervals->begin(), intervals->end(), before);
+  std::vector<size_t> bounds{0};
+  const size_t n = list->size();
+  for (size_t i = 0; i < n;) {
+    size_t j = i + 1;
+    if (j < n && before((*list)[j], (*list)[i])) {  // descending: reverse it
+      while (j < n && !before((*list)[j - 1], (*list)[j])) ++j;
+      std::reverse(list->begin() + i, list->begin() + j);
+    } else {
+      while (j < n && !before((*list)[j], (*list)[j - 1])) ++j;
+    }
+    bounds.push_back(j);
+    i = j;
+  }
+  scratch->resize(n);
+  while (bounds.size() > 2) {
+    std::vector<size_t> merged{0};
+    for (size_t k = 0; k + 1 < bounds.size(); k += 2) {
+      const size_t lo = bounds[k], mid = bounds[k + 1], hi = k + 2 < bounds.size() ? bounds[k + 2] : mid;
+      std::merge(list->begin() + lo, list->begin() + mid, list->begin() + mid, list->begin() + hi, scratch->begin() + lo,
+                 before);
+      merged.push_back(hi);
+    }
+    list->swap(*scratch);
+    bounds.swap(merged);
+  }
+}
+
+}  // namespace
+
+std::vector<Interval> pieces(std::vector<Interval>* intervals, double max_gap) {
+  thread_local std::vector<Interval> scratch;
+  sortStretches(intervals, &scratch);
   std::vector<Interval> out;
   for (const Interval& i : *intervals) {
     if (!out.empty() && i.t0 - out.back().t1 <= max_gap) {

@@ -66,6 +66,18 @@ struct Interval {
 // `intervals`).
 std::vector<Interval> pieces(std::vector<Interval>* intervals, double max_gap);
 
+// Calls visit(a, b) for every maximal stretch [a, b] of [x0, x1] whose claim flags are 0.
+template <class Visit>
+inline void forEachUnclaimed(int x0, int x1, const uint8_t* claimed, Visit&& visit) {
+  int x = x0;
+  while (x <= x1) {
+    while (x <= x1 && claimed[x]) ++x;
+    const int start = x;
+    while (x <= x1 && !claimed[x]) ++x;
+    if (x > start) visit(start, x - 1);
+  }
+}
+
 // One edge object's runs with an index by row, so that a band only visits the rows it can
 // reach, and the pixels lines found so far have claimed (per pixel of the bounding box).
 class ObjectRuns {

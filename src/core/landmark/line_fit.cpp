@@ -5,20 +5,6 @@
 
 namespace rle_vision {
 
-void PointSums::addRun(int x0, int x1, int y) {
-  const double count = x1 - x0 + 1;
-  const double sum_x = 0.5 * (static_cast<double>(x0) + x1) * count;
-  // Sum of x^2 for x = x0..x1.
-  auto squares = [](double k) { return k * (k + 1) * (2 * k + 1) / 6.0; };
-  const double sum_xx = x0 >= 0 ? squares(x1) - squares(x0 - 1.0) : 0.0;
-  n += count;
-  sx += sum_x;
-  sy += count * y;
-  sxx += sum_xx;
-  sxy += sum_x * y;
-  syy += count * y * static_cast<double>(y);
-}
-
 void PointSums::add(const PointSums& o) {
   n += o.n;
   sx += o.sx;

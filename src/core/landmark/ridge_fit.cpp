@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/simd_dispatch.h"
+#include "landmark/ridge_profile.h"
+
 namespace rle_vision {
 namespace {
 
@@ -23,6 +26,7 @@ inline double sample(const cv::Mat& edges, double x, double y) {
   return (1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) + fy * ((1 - fx) * r1[0] + fx * r1[1]);
 }
 
+
 // Ridge points: every pixel along the line, the edge profile perpendicular to it (half-pixel
 // steps, bilinear) where it peaks above min_strength; its centre is the centroid of the
 // profile above half the edge threshold. Perpendicular profiles stay symmetric at end caps,
@@ -40,8 +44,18 @@ void RidgeFitter::ridgePoints(const cv::Mat& edges, const ImageLine& line, doubl
   const double t_origin = px * c + py * s;
   constexpr double kStep = 0.5;
   const int half = static_cast<int>(std::ceil(o.half_width_px / kStep));
-  profile_.resize(2 * half + 1);
+  const int samples = 2 * half + 1;
+  profile_.resize(samples);
+  offset_x_.resize(samples);
+  offset_y_.resize(samples);
   double* const profile = profile_.data();
+  for (int k = -half; k <= half; ++k) {
+    offset_x_[k + half] = k * kStep * nx;
+    offset_y_[k + half] = k * kStep * ny;
+  }
+#ifdef RLE_VISION_AVX2_KERNELS
+  const bool avx2 = cpuHasAvx2();
+#endif
   const double floor = 0.5 * o.min_strength;
   // Samples whose 2x2 neighbourhood is inside the image: x in [0, cols - 1), y in [0, rows - 1).
   const double x_max = edges.cols - 1, y_max = edges.rows - 1;
@@ -52,33 +66,29 @@ void RidgeFitter::ridgePoints(const cv::Mat& edges, const ImageLine& line, doubl
     const double zx = bx + half * kStep * nx, zy = by + half * kStep * ny;
     if (std::min(ax, zx) >= 0 && std::max(ax, zx) < x_max && std::min(ay, zy) >= 0 && std::max(ay, zy) < y_max) {
       // The whole profile is inside: no bounds checks, and truncation is floor.
-      const uint8_t* data = edges.data;
-      for (int k = -half; k <= half; ++k) {
-        const double x = bx + k * kStep * nx, y = by + k * kStep * ny;
-        const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
-        const double fx = x - x0, fy = y - y0;
-        const uint8_t* r0 = data + y0 * step + x0;
-        const uint8_t* r1 = r0 + step;
-        profile[k + half] = (1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) + fy * ((1 - fx) * r1[0] + fx * r1[1]);
+#ifdef RLE_VISION_AVX2_KERNELS
+      if (avx2) {
+        ridge::profileInsideAvx2(edges.data, step, bx, by, offset_x_.data(), offset_y_.data(), samples, profile);
+      } else {
+        ridge::profileInside(edges.data, step, bx, by, offset_x_.data(), offset_y_.data(), samples, profile);
       }
+#else
+      ridge::profileInside(edges.data, step, bx, by, offset_x_.data(), offset_y_.data(), samples, profile);
+#endif
     } else {
       for (int k = -half; k <= half; ++k) profile[k + half] = sample(edges, bx + k * kStep * nx, by + k * kStep * ny);
     }
-    // The strongest sample; on a plateau the one nearest the line.
-    int best = 0;
-    for (int k = 1; k <= 2 * half; ++k) {
-      if (profile[k] > profile[best] || (profile[k] == profile[best] && std::abs(k - half) < std::abs(best - half))) {
-        best = k;
-      }
-    }
-    if (profile[best] < o.min_strength) continue;
+    // The strongest sample's value.
+    double peak = profile[0];
+    for (int k = 1; k < samples; ++k) peak = std::max(peak, profile[k]);
+    if (peak < o.min_strength) continue;
     // The centre: the centroid of the strong samples across the window, so a thin bar's two
     // edges (however deep the dip between them) give the bar's centre line.
     // Samples of at least half the peak: a bar's two equal edges count, a weaker edge nearby
     // does not.
-    const double level = std::max(floor, 0.5 * profile[best]);
+    const double level = std::max(floor, 0.5 * peak);
     double weight = 0, moment = 0;
-    for (int k = 0; k <= 2 * half; ++k) {
+    for (int k = 0; k < samples; ++k) {
       if (profile[k] < level) continue;
       const double w = profile[k] - floor;
       if (w <= 0) continue;

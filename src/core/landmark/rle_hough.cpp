@@ -49,9 +49,7 @@ PointSums unclaimedSums(const ObjectRuns& runs, const Homogeneous& h, double hal
                         const std::optional<AlongRange>& range) {
   PointSums sums;
   runs.forEachStretch(h, half_width, range, [&sums](int y, int x0, int x1, const uint8_t* claimed) {
-    for (int x = x0; x <= x1; ++x) {
-      if (!claimed[x]) sums.addPixel(x, y);
-    }
+    hough::forEachUnclaimed(x0, x1, claimed, [&](int a, int b) { sums.addRun(a, b, y); });
   });
   return sums;
 }
@@ -62,11 +60,10 @@ void bandIntervals(const ObjectRuns& runs, const Homogeneous& h, double half_wid
                    const std::optional<AlongRange>& range, std::vector<Interval>* intervals, PointSums* unclaimed) {
   runs.forEachStretch(h, half_width, range, [&](int y, int x0, int x1, const uint8_t* claimed) {
     int free = 0;
-    for (int x = x0; x <= x1; ++x) {
-      if (claimed[x]) continue;
-      ++free;
-      unclaimed->addPixel(x, y);
-    }
+    hough::forEachUnclaimed(x0, x1, claimed, [&](int a, int b) {
+      free += b - a + 1;
+      unclaimed->addRun(a, b, y);
+    });
     double t0 = along(h, x0, y), t1 = along(h, x1, y);
     if (t0 > t1) std::swap(t0, t1);
     intervals->push_back({t0, t1, static_cast<double>(x1 - x0 + 1), static_cast<double>(free)});
@@ -397,13 +394,16 @@ bool RleHough::Impl::refine(const ObjectRuns& runs, const ImageLine& seed, const
   // chance votes across them) is not worth a refit: counted in the same pass.
   double unclaimed_near = 0;
   const Homogeneous hs = homogeneous(line);
+  int near_row = -1, near_lo = 0, near_hi = -1;  // the fitting band's columns in row near_row
   runs.forEachStretch(hs, 2 * o.fit_distance_px, std::nullopt, [&](int y, int x0, int x1, const uint8_t* claimed) {
-    for (int x = x0; x <= x1; ++x) {
-      if (!claimed[x]) sums.addPixel(x, y);
+    if (y != near_row) {  // a row may hold several stretches
+      near_row = y;
+      runs.bandColumns(hs, o.fit_distance_px, y, &near_lo, &near_hi);
     }
-    int near_lo = 0, near_hi = -1;
-    runs.bandColumns(hs, o.fit_distance_px, y, &near_lo, &near_hi);
-    for (int x = std::max(x0, near_lo); x <= std::min(x1, near_hi); ++x) unclaimed_near += claimed[x] ? 0 : 1;
+    hough::forEachUnclaimed(x0, x1, claimed, [&](int a, int b) {
+      sums.addRun(a, b, y);
+      unclaimed_near += std::max(0, std::min(b, near_hi) - std::max(a, near_lo) + 1);
+    });
   });
   if (unclaimed_near < 0.5 * o.min_line_length_px) return false;
   if (sums.n < 0.5 * o.min_line_length_px || !sums.fitLine(&line, &rms)) return true;
@@ -412,6 +412,13 @@ bool RleHough::Impl::refine(const ObjectRuns& runs, const ImageLine& seed, const
   bandIntervals(runs, homogeneous(line), o.fit_distance_px, std::nullopt, &intervals, &sums);
   if (sums.n < 0.5 * o.min_line_length_px || !sums.fitLine(&line, &rms)) return true;
 
+  // No piece can be long enough when all the stretches together span less: skip the sorting.
+  double first = INFINITY, last = -INFINITY;
+  for (const Interval& i : intervals) {
+    first = std::min(first, i.t0);
+    last = std::max(last, i.t1);
+  }
+  if (last - first < o.min_line_length_px) return true;
   // Every stretch long enough gives segments (a horizon broken by obstacles gives several).
   std::vector<DetectedLine> segments;
   for (const Interval& piece : hough::pieces(&intervals, o.max_gap_px)) {
