@@ -26,7 +26,6 @@ inline double sample(const cv::Mat& edges, double x, double y) {
   return (1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) + fy * ((1 - fx) * r1[0] + fx * r1[1]);
 }
 
-
 // Ridge points: every pixel along the line, the edge profile perpendicular to it (half-pixel
 // steps, bilinear) where it peaks above min_strength; its centre is the centroid of the
 // profile above half the edge threshold. Perpendicular profiles stay symmetric at end caps,
