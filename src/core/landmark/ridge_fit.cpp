@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/simd_dispatch.h"
 #include "landmark/ridge_profile.h"
 
 namespace rle_vision {
@@ -52,9 +51,6 @@ void RidgeFitter::ridgePoints(const cv::Mat& edges, const ImageLine& line, doubl
     offset_x_[k + half] = k * kStep * nx;
     offset_y_[k + half] = k * kStep * ny;
   }
-#ifdef RLE_VISION_AVX2_KERNELS
-  const bool avx2 = cpuHasAvx2();
-#endif
   const double floor = 0.5 * o.min_strength;
   // Samples whose 2x2 neighbourhood is inside the image: x in [0, cols - 1), y in [0, rows - 1).
   const double x_max = edges.cols - 1, y_max = edges.rows - 1;
@@ -65,15 +61,7 @@ void RidgeFitter::ridgePoints(const cv::Mat& edges, const ImageLine& line, doubl
     const double zx = bx + half * kStep * nx, zy = by + half * kStep * ny;
     if (std::min(ax, zx) >= 0 && std::max(ax, zx) < x_max && std::min(ay, zy) >= 0 && std::max(ay, zy) < y_max) {
       // The whole profile is inside: no bounds checks, and truncation is floor.
-#ifdef RLE_VISION_AVX2_KERNELS
-      if (avx2) {
-        ridge::profileInsideAvx2(edges.data, step, bx, by, offset_x_.data(), offset_y_.data(), samples, profile);
-      } else {
-        ridge::profileInside(edges.data, step, bx, by, offset_x_.data(), offset_y_.data(), samples, profile);
-      }
-#else
-      ridge::profileInside(edges.data, step, bx, by, offset_x_.data(), offset_y_.data(), samples, profile);
-#endif
+      ridge::profileInsideFastest(edges.data, step, bx, by, offset_x_.data(), offset_y_.data(), samples, profile);
     } else {
       for (int k = -half; k <= half; ++k) profile[k + half] = sample(edges, bx + k * kStep * nx, by + k * kStep * ny);
     }

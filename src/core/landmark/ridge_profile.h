@@ -31,5 +31,17 @@ void profileInsideAvx2(const uint8_t* data, size_t step, double bx, double by, c
                        const double* offset_y, int count, double* profile);
 #endif
 
+// profileInside with the fastest kernel this CPU runs.
+inline void profileInsideFastest(const uint8_t* data, size_t step, double bx, double by, const double* offset_x,
+                                 const double* offset_y, int count, double* profile) {
+#ifdef RLE_VISION_AVX2_KERNELS
+  if (cpuHasAvx2()) {
+    profileInsideAvx2(data, step, bx, by, offset_x, offset_y, count, profile);
+    return;
+  }
+#endif
+  profileInside(data, step, bx, by, offset_x, offset_y, count, profile);
+}
+
 }  // namespace ridge
 }  // namespace rle_vision
