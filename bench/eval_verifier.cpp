@@ -146,10 +146,11 @@ HeldOutScore evaluate(const Date& held_out, const std::vector<const Date*>& trai
     const auto start = std::chrono::steady_clock::now();
     candidateRegions(&segmenter, bgr, candidates_range, floorOf(field), bench::kMinBallBlobArea, &regions);
     std::vector<cv::Point2d> kept, kept_on_field, all, kept_by[3];
+    const FrameChroma frame = regions.empty() ? FrameChroma() : frameChroma(bgr);
     for (const Region& r : regions) {
       ++s.candidates;
       all.emplace_back(r.cx, r.cy);
-      candidateFeatures(bgr, r, &x);
+      candidateFeatures(bgr, frame, r, &x);
       if (compare_models) keepByAlternatives(alternatives, x, heightAboveField(field, r.cx, r.cy, bgr.rows), r, kept_by);
       if (verifier.score(x) < 0.5f) continue;
       kept.emplace_back(r.cx, r.cy);

@@ -4,7 +4,7 @@
 // holding all of them (optionally widened); its blobs, with the floor's colour taking the floor's
 // pixels first as in the tracker, are the candidates; those on a labelled box are the positives.
 // With two or more groups the verifier is one model per group, trained without it (a candidate
-// must convince them all), and every group is held out in turn: a range and a verifier made
+// scores their mean), and every group is held out in turn: a range and a verifier made
 // from the others score its candidates (grouped cross-validation).
 //
 //   rle_vision_train --class NAME --label-class N [--widen LEVELS] --output FILE FOLDER...
@@ -168,7 +168,7 @@ int run(const Arguments& a) {
   BlobVerifier verifier = BlobVerifier::trainAcrossGroups(all.features(), all.labels(), all.groups());
   verifier.setCandidateRange(range);
   note += std::to_string(verifier.modelCount()) + (verifier.modelCount() > 1 ? " models, one per folder, each trained without it; a "
-                                                                              "candidate scores the lowest of theirs\n"
+                                                                              "candidate scores their mean\n"
                                                                             : " model\n");
   note += printScores("training (all folders)", verifier, all);
   verifier.save(a.output, note);

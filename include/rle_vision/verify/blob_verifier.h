@@ -2,8 +2,9 @@
 // permissive range), a small model decides which candidates are the object. The model is
 // OpenCV's ml Boost (Real AdaBoost on depth-2 trees): deterministic, small (a few tens of KB),
 // microseconds a candidate. Trained across groups (recordings in different halls and light), it
-// is one model per group, each trained without that group, and a candidate must convince them
-// all: what only one hall's frames taught (a colour, a background) does not decide.
+// is one model per group, each trained without that group, and a candidate's score is their
+// mean: what only one hall's frames taught (a colour, a background) weighs in one model of
+// several.
 #pragma once
 
 #include <memory>
@@ -48,8 +49,8 @@ class BlobVerifier {
 
   bool trained() const;
   int modelCount() const { return static_cast<int>(models_.size()); }
-  // The candidate's score in [0, 1]: the lowest of the models' (each a logistic of its boosted
-  // sum: 0.5 is the decision boundary); 0 without a model.
+  // The candidate's score in [0, 1]: the logistic of the models' mean boosted sum (each sum half
+  // a log-odds: 0.5 is the decision boundary); 0 without a model.
   float score(const CandidateFeatures& features) const;
 
   // The permissive colour range whose blobs are the candidates (kept in the model file: the
@@ -58,7 +59,7 @@ class BlobVerifier {
   const ColorClass& candidateRange() const { return candidate_range_; }
 
   // The models and the candidate range as a YAML or XML file (OpenCV FileStorage; a name
-  // ending in .gz is compressed), with the feature count checked on load. Both throw
+  // ending in .gz is compressed), with the feature count and version checked on load. Both throw
   // std::runtime_error with the path and the reason. `note` (how the model was made) goes at
   // the top of the file as comment lines.
   void save(const std::string& path, const std::string& note = "") const;

@@ -4,7 +4,6 @@
 #include <cfloat>
 #include <cmath>
 #include <fstream>
-#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -112,17 +111,16 @@ bool BlobVerifier::trained() const {
 float BlobVerifier::score(const CandidateFeatures& features) const {
   if (!trained()) return 0.0f;
   const cv::Mat row(1, kCandidateFeatureCount, CV_32F, const_cast<float*>(features.data()));
-  // Real AdaBoost's sum estimates half the log-odds of the object class: the lowest sum gives
-  // the lowest score.
-  float lowest = std::numeric_limits<float>::infinity();
+  // Real AdaBoost's sum estimates half the log-odds of the object class: the models' mean sum
+  // (each trained without one group) gives the score.
+  float total = 0;
   // OpenCV reads FLT_MAX as a missing value its own way (the features never hold it).
   const bool missing = std::find(features.begin(), features.end(), FLT_MAX) != features.end();
   for (size_t i = 0; i < models_.size(); ++i) {
-    const float sum = flat_models_[i].usable() && !missing ? flat_models_[i].sum(features.data())
-                                               : models_[i]->predict(row, cv::noArray(), cv::ml::DTrees::PREDICT_SUM);
-    lowest = std::min(lowest, sum);
+    total += flat_models_[i].usable() && !missing ? flat_models_[i].sum(features.data())
+                                                  : models_[i]->predict(row, cv::noArray(), cv::ml::DTrees::PREDICT_SUM);
   }
-  return 1.0f / (1.0f + std::exp(-2.0f * lowest));
+  return 1.0f / (1.0f + std::exp(-2.0f * total / static_cast<float>(models_.size())));
 }
 
 void BlobVerifier::save(const std::string& path, const std::string& note) const {
@@ -133,6 +131,7 @@ void BlobVerifier::save(const std::string& path, const std::string& note) const 
   for (std::string line; std::getline(lines, line);) file.writeComment(line);
   file << "rle_vision_verifier" << "{";
   file << "feature_count" << kCandidateFeatureCount;
+  file << "feature_version" << kCandidateFeatureVersion;
   const ColorClass& c = candidate_range_;
   file << "candidate_range" << "{" << "name" << c.name << "space" << toString(c.space) << "min"
        << std::vector<int>{c.min[0], c.min[1], c.min[2]} << "max" << std::vector<int>{c.max[0], c.max[1], c.max[2]}
@@ -161,6 +160,13 @@ BlobVerifier BlobVerifier::load(const std::string& path) {
     throw std::runtime_error(path + ": made for " + std::to_string(static_cast<int>(root["feature_count"])) +
                              " features, this version computes " + std::to_string(kCandidateFeatureCount) +
                              ": train it again with rle_vision_train");
+  }
+  if (static_cast<int>(root["feature_version"]) != kCandidateFeatureVersion) {
+    throw std::runtime_error(path + ": made for the features of another version (" +
+                             (root["feature_version"].empty() ? std::string("1, absolute chroma")
+                                                              : std::to_string(static_cast<int>(root["feature_version"]))) +
+                             "; this one computes version " + std::to_string(kCandidateFeatureVersion) +
+                             "): train it again with rle_vision_train");
   }
   BlobVerifier verifier;
   const cv::FileNode range = root["candidate_range"];

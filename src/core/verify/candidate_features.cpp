@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include <opencv2/imgproc.hpp>
 
@@ -13,6 +15,7 @@ constexpr int kCell = 8;        // gradient orientation cells: 2x2 of 8x8 px
 constexpr int kOrientations = 8;
 constexpr int kChromaGrid = 4;  // U and V averaged on a 4x4 grid
 constexpr int kRingGrid = 32;   // the box and its ring's colours: sampled on a 32x32 grid
+constexpr int kChromaReferenceGrid = 48;  // the frame's chroma: the median of a 48x48 grid of pixels
 
 // The box grown by `margin` (a share of its larger side, at least 2 px), clipped to the image.
 cv::Rect grown(const Region& r, double margin, const cv::Size& size) {
@@ -82,8 +85,25 @@ void orientations(const cv::Mat& grey, float* out) {
 
 }  // namespace
 
-void candidateFeatures(const cv::Mat& bgr, const Region& r, CandidateFeatures* out, cv::Mat* patch_bgr,
-                       cv::Mat* patch_yuv) {
+FrameChroma frameChroma(const cv::Mat& bgr) {
+  FrameChroma chroma;
+  if (bgr.empty() || bgr.type() != CV_8UC3) return chroma;
+  cv::Mat small, yuv;
+  cv::resize(bgr, small, cv::Size(kChromaReferenceGrid, kChromaReferenceGrid), 0, 0, cv::INTER_NEAREST);
+  cv::cvtColor(small, yuv, cv::COLOR_BGR2YUV);
+  std::vector<uint8_t> values(static_cast<size_t>(yuv.total()));
+  double* medians[2] = {&chroma.u, &chroma.v};
+  for (int c = 1; c <= 2; ++c) {
+    const uint8_t* p = yuv.ptr<uint8_t>();
+    for (size_t i = 0; i < values.size(); ++i) values[i] = p[3 * i + c];
+    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+    *medians[c - 1] = values[values.size() / 2];
+  }
+  return chroma;
+}
+
+void candidateFeatures(const cv::Mat& bgr, const FrameChroma& frame, const Region& r, CandidateFeatures* out,
+                       cv::Mat* patch_bgr, cv::Mat* patch_yuv) {
   cv::Mat local_bgr, local_yuv;
   cv::Mat& patch = patch_bgr ? *patch_bgr : local_bgr;
   cv::Mat& yuv = patch_yuv ? *patch_yuv : local_yuv;
@@ -111,6 +131,12 @@ void candidateFeatures(const cv::Mat& bgr, const Region& r, CandidateFeatures* o
                        std::max(1, static_cast<int>(std::ceil(box.width * sx))), std::max(1, static_cast<int>(std::ceil(box.height * sy))));
   double box_mean[3], box_sd[3], ring_mean[3], ring_sd[3];
   yuvStats(yuv, inner, box_mean, box_sd, ring_mean, ring_sd);
+  // Chroma from the frame's (the ring's minus the box's is the same either way).
+  const double shift[3] = {0, frame.u - 128, frame.v - 128};
+  for (int c = 1; c <= 2; ++c) {
+    box_mean[c] -= shift[c];
+    ring_mean[c] -= shift[c];
+  }
   for (int c = 0; c < 3; ++c) *f++ = static_cast<float>(box_mean[c] / 255.0);
   for (int c = 0; c < 3; ++c) *f++ = static_cast<float>(box_sd[c] / 255.0);
   for (int c = 0; c < 3; ++c) *f++ = static_cast<float>(ring_mean[c] / 255.0);
@@ -129,7 +155,7 @@ void candidateFeatures(const cv::Mat& bgr, const Region& r, CandidateFeatures* o
   cv::resize(chroma, chroma, cv::Size(kChromaGrid, kChromaGrid), 0, 0, cv::INTER_AREA);
   for (int c = 1; c <= 2; ++c) {
     for (int y = 0; y < kChromaGrid; ++y) {
-      for (int x = 0; x < kChromaGrid; ++x) *f++ = static_cast<float>(chroma.at<cv::Vec3b>(y, x)[c] / 255.0);
+      for (int x = 0; x < kChromaGrid; ++x) *f++ = static_cast<float>((chroma.at<cv::Vec3b>(y, x)[c] - shift[c]) / 255.0);
     }
   }
 }

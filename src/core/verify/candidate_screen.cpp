@@ -63,6 +63,7 @@ ScreeningCounts CandidateScreen::apply(const cv::Mat& bgr, const ColorTable& tab
                    [&](size_t a, size_t b) { return (*blobs)[a].region.area > (*blobs)[b].region.area; });
   keep_.assign(blobs->size(), 1);
   CandidateFeatures x;
+  const FrameChroma frame = order_.empty() ? FrameChroma() : frameChroma(bgr);
   for (size_t k = 0; k < order_.size(); ++k) {
     TrackedBlob& blob = (*blobs)[order_[k]];
     if (k >= max_candidates_) {
@@ -71,7 +72,7 @@ ScreeningCounts CandidateScreen::apply(const cv::Mat& bgr, const ColorTable& tab
       continue;
     }
     const ClassVerifier& verifier = verifiers_[static_cast<size_t>(verifierOf(blob))];
-    candidateFeatures(bgr, blob.region, &x, &patch_bgr_, &patch_yuv_);
+    candidateFeatures(bgr, frame, blob.region, &x, &patch_bgr_, &patch_yuv_);
     blob.score = verifier.model->score(x);
     ++counts.scored;
     if (blob.score < verifier.min_score) {

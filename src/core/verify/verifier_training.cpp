@@ -45,8 +45,9 @@ void VerifierTrainingSet::addFrame(const cv::Mat& bgr, const std::vector<cv::Rec
                                    const ColorClass* floor) {
   candidateRegions(&segmenter_, bgr, range_, floor, min_area_px_, &regions_);
   CandidateFeatures x;
+  const FrameChroma frame = regions_.empty() ? FrameChroma() : frameChroma(bgr);
   for (const Region& r : regions_) {
-    candidateFeatures(bgr, r, &x);
+    candidateFeatures(bgr, frame, r, &x);
     features_.push_back(cv::Mat(1, kCandidateFeatureCount, CV_32F, x.data()));
     bool on_object = false;
     for (const cv::Rect& b : object_boxes) {

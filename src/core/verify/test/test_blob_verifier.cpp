@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -67,6 +69,21 @@ TEST(BlobVerifier, ModelFileRoundTripsAndBadInputIsRefused) {
   EXPECT_EQ(loaded.candidateRange().name, "ball");
   EXPECT_EQ(loaded.candidateRange().min, yellowRange().min);
   EXPECT_EQ(loaded.candidateRange().max, yellowRange().max);
+  // A file made for the features of another version (none named: version 1, absolute chroma):
+  // refused, with the fix.
+  std::ifstream written(path);
+  std::string text((std::istreambuf_iterator<char>(written)), std::istreambuf_iterator<char>());
+  const size_t found = text.find("feature_version: " + std::to_string(kCandidateFeatureVersion) + "\n");
+  ASSERT_NE(found, std::string::npos);
+  const size_t at = text.rfind('\n', found) + 1;  // the line, with its indentation
+  const std::string old_path = testing::TempDir() + "/rle_vision_verifier_v1.yml";
+  std::ofstream(old_path) << text.erase(at, text.find('\n', at) + 1 - at);
+  try {
+    BlobVerifier::load(old_path);
+    ADD_FAILURE() << "a verifier file of version 1 loaded";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("train it again with rle_vision_train"), std::string::npos) << e.what();
+  }
   // One class only, wrong sizes, unreadable and foreign files: refused with the reason.
   EXPECT_THROW(BlobVerifier::train(train.features(), std::vector<int>(train.labels().size(), 0)), std::invalid_argument);
   EXPECT_THROW(BlobVerifier::train(train.features().colRange(0, 10).clone(), train.labels()), std::invalid_argument);
