@@ -131,7 +131,7 @@ void candidateFeatures(const cv::Mat& bgr, const FrameChroma& frame, const Regio
                        std::max(1, static_cast<int>(std::ceil(box.width * sx))), std::max(1, static_cast<int>(std::ceil(box.height * sy))));
   double box_mean[3], box_sd[3], ring_mean[3], ring_sd[3];
   yuvStats(yuv, inner, box_mean, box_sd, ring_mean, ring_sd);
-  // Chroma from the frame's (the ring's minus the box's is the same either way).
+  // Chroma from the frame's (the box's minus the ring's is the same either way).
   const double shift[3] = {0, frame.u - 128, frame.v - 128};
   for (int c = 1; c <= 2; ++c) {
     box_mean[c] -= shift[c];
