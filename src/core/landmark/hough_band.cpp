@@ -8,9 +8,12 @@ namespace {
 // Sorts by t0 a list that is a few sorted stretches one after another (a band's rows, each
 // in order along the line one way or the other): each stretch is put in ascending order, then
 // neighbouring stretches are merged, O(n log stretches) where std::sort would be O(n log n).
-void sortStretches(std::vector<Interval>* list, std::vector<Interval>* scratch) {
+// Its buffers are kept per thread: it runs for every line candidate.
+void sortStretches(std::vector<Interval>* list) {
   const auto before = [](const Interval& a, const Interval& b) { return a.t0 < b.t0; };
-  std::vector<size_t> bounds{0};
+  thread_local std::vector<Interval> scratch;
+  thread_local std::vector<size_t> bounds, merged;
+  bounds.assign(1, 0);
   const size_t n = list->size();
   for (size_t i = 0; i < n;) {
     size_t j = i + 1;
@@ -23,16 +26,16 @@ void sortStretches(std::vector<Interval>* list, std::vector<Interval>* scratch) 
     bounds.push_back(j);
     i = j;
   }
-  scratch->resize(n);
+  scratch.resize(n);
   while (bounds.size() > 2) {
-    std::vector<size_t> merged{0};
+    merged.assign(1, 0);
     for (size_t k = 0; k + 1 < bounds.size(); k += 2) {
       const size_t lo = bounds[k], mid = bounds[k + 1], hi = k + 2 < bounds.size() ? bounds[k + 2] : mid;
-      std::merge(list->begin() + lo, list->begin() + mid, list->begin() + mid, list->begin() + hi, scratch->begin() + lo,
+      std::merge(list->begin() + lo, list->begin() + mid, list->begin() + mid, list->begin() + hi, scratch.begin() + lo,
                  before);
       merged.push_back(hi);
     }
-    list->swap(*scratch);
+    list->swap(scratch);
     bounds.swap(merged);
   }
 }
@@ -40,8 +43,7 @@ void sortStretches(std::vector<Interval>* list, std::vector<Interval>* scratch) 
 }  // namespace
 
 std::vector<Interval> pieces(std::vector<Interval>* intervals, double max_gap) {
-  thread_local std::vector<Interval> scratch;
-  sortStretches(intervals, &scratch);
+  sortStretches(intervals);
   std::vector<Interval> out;
   for (const Interval& i : *intervals) {
     if (!out.empty() && i.t0 - out.back().t1 <= max_gap) {

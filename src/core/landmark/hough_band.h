@@ -85,7 +85,8 @@ class ObjectRuns {
   ObjectRuns(const Run* runs, const int32_t* row_first, int top, int bottom, int left, int right, uint8_t* claimed)
       : runs_(runs), row_first_(row_first), top_(top), bottom_(bottom), left_(left), right_(right), claimed_(claimed) {}
 
-  bool isClaimed(int x, int y) const { return claimed_[(y - top_) * stride() + (x - left_)] != 0; }
+  // The claim flags of row y: claimedRow(y)[x] is pixel (x, y)'s.
+  const uint8_t* claimedRow(int y) const { return claimed_ + (y - top_) * stride() - left_; }
 
   // The columns [*lo, *hi] of row y (clamped to the box give or take one) whose centres lie
   // within `half_width` of the line; *hi < *lo when none.
@@ -155,7 +156,7 @@ void ObjectRuns::forEachStretch(const Homogeneous& h, double band, const std::op
     if (row_end - run_ptr > 4) {
       run_ptr = std::partition_point(run_ptr, row_end, [lo](const Run& r) { return r.x1 < lo; });
     }
-    uint8_t* const claimed_row = claimed_ + (y - top_) * stride() - left_;
+    uint8_t* const claimed_row = claimed_ + (y - top_) * stride() - left_;  // claimedRow(y), writable
     for (; run_ptr < row_end && run_ptr->x0 <= hi; ++run_ptr) {
       if (run_ptr->x1 < lo) continue;
       visit(y, std::max(lo, static_cast<int>(run_ptr->x0)), std::min(hi, static_cast<int>(run_ptr->x1)), claimed_row);

@@ -57,13 +57,13 @@ void RidgeFitter::ridgePoints(const cv::Mat& edges, const ImageLine& line, doubl
   const size_t step = edges.step[0];
   for (double t = std::ceil(t0); t <= t1; t += 1.0) {
     const double bx = px + (t - t_origin) * c, by = py + (t - t_origin) * s;
-    const double ax = bx - half * kStep * nx, ay = by - half * kStep * ny;  // the profile's ends
-    const double zx = bx + half * kStep * nx, zy = by + half * kStep * ny;
+    const double ax = bx + offset_x_[0], ay = by + offset_y_[0];  // the profile's ends
+    const double zx = bx + offset_x_[samples - 1], zy = by + offset_y_[samples - 1];
     if (std::min(ax, zx) >= 0 && std::max(ax, zx) < x_max && std::min(ay, zy) >= 0 && std::max(ay, zy) < y_max) {
       // The whole profile is inside: no bounds checks, and truncation is floor.
       ridge::profileInsideFastest(edges.data, step, bx, by, offset_x_.data(), offset_y_.data(), samples, profile);
     } else {
-      for (int k = -half; k <= half; ++k) profile[k + half] = sample(edges, bx + k * kStep * nx, by + k * kStep * ny);
+      for (int i = 0; i < samples; ++i) profile[i] = sample(edges, bx + offset_x_[i], by + offset_y_[i]);
     }
     // The strongest sample's value.
     double peak = profile[0];

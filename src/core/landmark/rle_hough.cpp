@@ -223,15 +223,8 @@ void RleHough::Impl::unclaimedRuns(const Run* runs, int run_count, const ObjectR
   sample_runs.clear();
   for (int i = 0; i < run_count; ++i) {
     const Run& run = runs[i];
-    int start = -1;
-    for (int x = run.x0; x <= run.x1 + 1; ++x) {
-      const bool free = x <= run.x1 && !indexed.isClaimed(x, run.y);
-      if (free && start < 0) start = x;
-      if (!free && start >= 0) {
-        sample_runs.push_back(Run{start, x - 1, run.y, 0, run.label});
-        start = -1;
-      }
-    }
+    hough::forEachUnclaimed(run.x0, run.x1, indexed.claimedRow(run.y),
+                            [&](int a, int b) { sample_runs.push_back(Run{a, b, run.y, 0, run.label}); });
   }
 }
 
