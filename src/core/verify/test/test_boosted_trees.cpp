@@ -52,14 +52,19 @@ TEST(BoostedTrees, SumsAsOpenCvOnATrainedModel) {
     features.at<float>(i, 3) += 0.4f * static_cast<float>(i % 2);
     features.at<float>(i, 17) -= 0.3f * static_cast<float>(i % 2);
   }
-  cv::Ptr<cv::ml::Boost> model = cv::ml::Boost::create();
-  model->setBoostType(cv::ml::Boost::REAL);
-  model->setWeakCount(60);
-  model->setMaxDepth(3);
-  model->setUseSurrogates(false);
-  model->train(cv::ml::TrainData::create(features, cv::ml::ROW_SAMPLE, labels));
-  expectOpenCvSums(*model, probes(*model, 500, 11));
-  expectOpenCvSums(*model, features);
+  // Depth 1 and 2: the complete depth-two trees (a depth-one tree's leaves repeated below);
+  // depth 3: the walk.
+  for (const int depth : {1, 2, 3}) {
+    cv::Ptr<cv::ml::Boost> model = cv::ml::Boost::create();
+    model->setBoostType(cv::ml::Boost::REAL);
+    model->setWeakCount(60);
+    model->setMaxDepth(depth);
+    model->setUseSurrogates(false);
+    model->train(cv::ml::TrainData::create(features, cv::ml::ROW_SAMPLE, labels));
+    SCOPED_TRACE("depth " + std::to_string(depth));
+    expectOpenCvSums(*model, probes(*model, 500, 11));
+    expectOpenCvSums(*model, features);
+  }
 }
 
 TEST(BoostedTrees, SumsAsOpenCvOnTheShippedVerifiersModels) {

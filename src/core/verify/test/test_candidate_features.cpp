@@ -1,12 +1,14 @@
 // The candidate features' chroma is measured from the frame's own (FrameChroma): known answers
 // for the frame's chroma, and one scene under two lights that tint it differently giving the
-// same chroma features.
+// same chroma features. The fast features equal the reference's (one OpenCV call a step) bit
+// for bit.
 #include <cmath>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "reference_candidate_features.h"
 #include "rle_vision/verify/candidate_features.h"
 
 namespace rle_vision {
@@ -82,6 +84,48 @@ TEST(CandidateFeatures, ChromaFromTheFramesHoldsUnderAnotherLightsTint) {
   for (int i = 15; i < 18; ++i) EXPECT_FLOAT_EQ(b[i], b_absolute[i]) << "feature " << i;
   // Brightness is not chroma: the box's Y is measured as it is.
   EXPECT_NEAR(a[6], b[6], 2.5 / 255);
+}
+
+// A scene with what the features meet: flat patches (zero gradients), steps and diagonal ramps
+// (gradients on the orientation bins' edges: equal |gx| and |gy|), and noise.
+cv::Mat mixedScene(cv::RNG* rng) {
+  cv::Mat bgr(240, 320, CV_8UC3);
+  rng->fill(bgr, cv::RNG::UNIFORM, 0, 256);
+  for (int i = 0; i < 12; ++i) {
+    const cv::Rect r(rng->uniform(-20, 300), rng->uniform(-20, 220), rng->uniform(4, 80), rng->uniform(4, 80));
+    cv::rectangle(bgr, r, cv::Scalar(rng->uniform(0, 256), rng->uniform(0, 256), rng->uniform(0, 256)), cv::FILLED);
+  }
+  for (int y = 100; y < 180; ++y) {
+    for (int x = 200; x < 280; ++x) bgr.at<cv::Vec3b>(y, x) = cv::Vec3b(x + y - 300, 2 * (x - y), 128);
+  }
+  return bgr;
+}
+
+TEST(CandidateFeatures, EqualTheReferenceBitForBit) {
+  cv::RNG rng(20261207);
+  CandidateFeatures fast, slow;
+  cv::Mat patch_bgr, patch_yuv;
+  int compared = 0;
+  for (int scene = 0; scene < 6; ++scene) {
+    const cv::Mat bgr = mixedScene(&rng);
+    const FrameChroma chroma = frameChroma(bgr);
+    for (int i = 0; i < 80; ++i) {
+      Region r;
+      r.left = rng.uniform(0, bgr.cols - 1), r.top = rng.uniform(0, bgr.rows - 1);
+      r.right = std::min(bgr.cols - 1, r.left + rng.uniform(0, 90)), r.bottom = std::min(bgr.rows - 1, r.top + rng.uniform(0, 90));
+      r.area = static_cast<uint32_t>(rng.uniform(1, (r.right - r.left + 1) * (r.bottom - r.top + 1) + 1));
+      r.cx = 0.5 * (r.left + r.right), r.cy = 0.5 * (r.top + r.bottom);
+      r.var_xx = rng.uniform(0.0, 300.0), r.var_yy = rng.uniform(0.0, 300.0), r.var_xy = rng.uniform(-50.0, 50.0);
+      candidateFeatures(bgr, chroma, r, &fast, &patch_bgr, &patch_yuv);
+      reference::candidateFeatures(bgr, chroma, r, &slow);
+      for (int k = 0; k < kCandidateFeatureCount; ++k) {
+        ASSERT_EQ(fast[k], slow[k]) << "feature " << k << ", scene " << scene << ", box " << r.left << "," << r.top
+                                    << " to " << r.right << "," << r.bottom;
+      }
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 480);
 }
 
 }  // namespace
