@@ -29,7 +29,8 @@ struct FrameChroma {
 FrameChroma frameChroma(const cv::Mat& bgr);
 
 // The features of `region` (a blob of `bgr`, CV_8UC3, whose chroma is `frame`). `patch_bgr`,
-// `patch_yuv`: scratch buffers (reuse them across calls).
+// `patch_yuv`: scratch buffers (reuse them across calls). Throws std::invalid_argument when the
+// frame is not CV_8UC3 or the region's box lies off it.
 void candidateFeatures(const cv::Mat& bgr, const FrameChroma& frame, const Region& region, CandidateFeatures* out,
                        cv::Mat* patch_bgr = nullptr, cv::Mat* patch_yuv = nullptr);
 

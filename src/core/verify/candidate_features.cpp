@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
@@ -176,6 +177,11 @@ void candidateFeatures(const cv::Mat& bgr, const FrameChroma& frame, const Regio
   // 32x32 grid over the ring's outer box: the cost does not grow with the blob.
   const cv::Rect box(r.left, r.top, static_cast<int>(w), static_cast<int>(h));
   const cv::Rect around = grown(r, 0.5, bgr.size());
+  // The pixels are read in place: what cv::resize refused (a crop off the frame, another pixel
+  // type) must be refused here.
+  if (bgr.type() != CV_8UC3 || around.empty()) {
+    throw std::invalid_argument("candidate features: the region's box lies off the frame, or the frame is not 8-bit BGR");
+  }
   nearestGrid(bgr, around, &patch);
   cv::cvtColor(patch, yuv, cv::COLOR_BGR2YUV);
   const double sx = static_cast<double>(kRingGrid) / around.width, sy = static_cast<double>(kRingGrid) / around.height;

@@ -3,6 +3,7 @@
 // same chroma features. The fast features equal the reference's (one OpenCV call a step) bit
 // for bit.
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -126,6 +127,19 @@ TEST(CandidateFeatures, EqualTheReferenceBitForBit) {
     }
   }
   EXPECT_EQ(compared, 480);
+}
+
+TEST(CandidateFeatures, ARegionOffTheFrameOrAGreyFrameIsRefused) {
+  cv::RNG rng(7);
+  const cv::Mat bgr = mixedScene(&rng);
+  Region inside = ballRegion(), off = ballRegion();
+  off.left += 1000, off.right += 1000;
+  CandidateFeatures x;
+  EXPECT_NO_THROW(candidateFeatures(bgr, frameChroma(bgr), inside, &x));
+  EXPECT_THROW(candidateFeatures(bgr, frameChroma(bgr), off, &x), std::invalid_argument);
+  cv::Mat grey;
+  cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+  EXPECT_THROW(candidateFeatures(grey, FrameChroma(), inside, &x), std::invalid_argument);
 }
 
 }  // namespace
