@@ -86,7 +86,7 @@ class ObjectRuns {
       : runs_(runs), row_first_(row_first), top_(top), bottom_(bottom), left_(left), right_(right), claimed_(claimed) {}
 
   // The claim flags of row y: claimedRow(y)[x] is pixel (x, y)'s.
-  const uint8_t* claimedRow(int y) const { return claimed_ + (y - top_) * stride() - left_; }
+  const uint8_t* claimedRow(int y) const { return writableClaimedRow(y); }
 
   // The columns [*lo, *hi] of row y (clamped to the box give or take one) whose centres lie
   // within `half_width` of the line; *hi < *lo when none.
@@ -106,6 +106,7 @@ class ObjectRuns {
 
  private:
   int stride() const { return right_ - left_ + 1; }
+  uint8_t* writableClaimedRow(int y) const { return claimed_ + (y - top_) * stride() - left_; }
   void rowsOfBand(const Homogeneous& h, double half_width, const std::optional<AlongRange>& range, int* y0,
                   int* y1) const;
 
@@ -156,7 +157,7 @@ void ObjectRuns::forEachStretch(const Homogeneous& h, double band, const std::op
     if (row_end - run_ptr > 4) {
       run_ptr = std::partition_point(run_ptr, row_end, [lo](const Run& r) { return r.x1 < lo; });
     }
-    uint8_t* const claimed_row = claimed_ + (y - top_) * stride() - left_;  // claimedRow(y), writable
+    uint8_t* const claimed_row = writableClaimedRow(y);
     for (; run_ptr < row_end && run_ptr->x0 <= hi; ++run_ptr) {
       if (run_ptr->x1 < lo) continue;
       visit(y, std::max(lo, static_cast<int>(run_ptr->x0)), std::min(hi, static_cast<int>(run_ptr->x1)), claimed_row);

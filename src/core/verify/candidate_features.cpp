@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "rle_vision/color/color_convert.h"
+#include "verify/candidate_geometry.h"
 
 namespace rle_vision {
 namespace {
@@ -37,13 +38,6 @@ void nearestGrid(const cv::Mat& bgr, const cv::Rect& area, cv::Mat* grid) {
       to[0] = p[0], to[1] = p[1], to[2] = p[2];
     }
   }
-}
-
-// The box grown by `margin` (a share of its larger side, at least 2 px), clipped to the image.
-cv::Rect grown(const Region& r, double margin, const cv::Size& size) {
-  const int w = r.right - r.left + 1, h = r.bottom - r.top + 1;
-  const int m = std::max(2, static_cast<int>(std::lround(margin * std::max(w, h))));
-  return cv::Rect(r.left - m, r.top - m, w + 2 * m, h + 2 * m) & cv::Rect(cv::Point(), size);
 }
 
 // Mean and standard deviation of the YUV pixels of `grid` (kRingGrid x kRingGrid) inside `inner`
@@ -161,22 +155,11 @@ void candidateFeatures(const cv::Mat& bgr, const FrameChroma& frame, const Regio
   cv::Mat& patch = patch_bgr ? *patch_bgr : local_bgr;
   cv::Mat& yuv = patch_yuv ? *patch_yuv : local_yuv;
   float* f = out->data();
-  const double w = r.right - r.left + 1, h = r.bottom - r.top + 1;
-  // The blob: size, fill of its box, aspect, roundness (minor / major axis), row and column in
-  // the view (size against row: where a ball of this size can be).
-  const double trace = r.var_xx + r.var_yy, det = r.var_xx * r.var_yy - r.var_xy * r.var_xy;
-  const double disc = std::sqrt(std::max(0.0, trace * trace / 4 - det));
-  const double major = trace / 2 + disc, minor = std::max(0.0, trace / 2 - disc);
-  *f++ = static_cast<float>(std::log(std::max<uint32_t>(1, r.area)));
-  *f++ = static_cast<float>(r.area / (w * h));
-  *f++ = static_cast<float>(std::log(w / h));
-  *f++ = static_cast<float>(major > 0 ? std::sqrt(minor / major) : 1.0);
-  *f++ = static_cast<float>(r.cy / std::max(1, bgr.rows));
-  *f++ = static_cast<float>(r.cx / std::max(1, bgr.cols));
+  candidate_geometry::shapeFeatures(r, bgr.size(), f);
+  f += candidate_geometry::kShapeFeatureCount;
   // Colour: the box's, and a ring around it (half the box's larger side wide), sampled on a
   // 32x32 grid over the ring's outer box: the cost does not grow with the blob.
-  const cv::Rect box(r.left, r.top, static_cast<int>(w), static_cast<int>(h));
-  const cv::Rect around = grown(r, 0.5, bgr.size());
+  const cv::Rect around = candidate_geometry::grown(r, 0.5, bgr.size());
   // The pixels are read in place: what cv::resize refused (a crop off the frame, another pixel
   // type) must be refused here.
   if (bgr.type() != CV_8UC3 || around.empty()) {
@@ -184,9 +167,7 @@ void candidateFeatures(const cv::Mat& bgr, const FrameChroma& frame, const Regio
   }
   nearestGrid(bgr, around, &patch);
   cv::cvtColor(patch, yuv, cv::COLOR_BGR2YUV);
-  const double sx = static_cast<double>(kRingGrid) / around.width, sy = static_cast<double>(kRingGrid) / around.height;
-  const cv::Rect inner(static_cast<int>(std::floor((box.x - around.x) * sx)), static_cast<int>(std::floor((box.y - around.y) * sy)),
-                       std::max(1, static_cast<int>(std::ceil(box.width * sx))), std::max(1, static_cast<int>(std::ceil(box.height * sy))));
+  const cv::Rect inner = candidate_geometry::boxOnGrid(candidate_geometry::box(r), around, kRingGrid);
   double box_mean[3], box_sd[3], ring_mean[3], ring_sd[3];
   yuvStats(yuv, inner, box_mean, box_sd, ring_mean, ring_sd);
   // Chroma from the frame's (the box's minus the ring's is the same either way).
@@ -200,7 +181,7 @@ void candidateFeatures(const cv::Mat& bgr, const FrameChroma& frame, const Regio
   for (int c = 0; c < 3; ++c) *f++ = static_cast<float>(ring_mean[c] / 255.0);
   for (int c = 0; c < 3; ++c) *f++ = static_cast<float>((box_mean[c] - ring_mean[c]) / 255.0);
   // Appearance: the box plus a quarter margin, 16x16 (small boxes averaged, large ones sampled).
-  const cv::Rect appearance = grown(r, 0.25, bgr.size());
+  const cv::Rect appearance = candidate_geometry::grown(r, 0.25, bgr.size());
   cv::resize(bgr(appearance), patch, cv::Size(kPatch, kPatch), 0, 0,
              appearance.width <= 2 * kPatch && appearance.height <= 2 * kPatch ? cv::INTER_AREA : cv::INTER_LINEAR);
   // Its grey levels (COLOR_BGR2GRAY's, as floats in [0, 1]) and its chroma averaged on a 4x4

@@ -1,8 +1,7 @@
-// The candidate features as first written, one OpenCV call per step (resize, cvtColor,
-// convertTo, atan2): the reference the fast path (candidate_features.cpp, which reads the pixels
-// it needs in place) must equal bit for bit, so that a model trained on either holds on both.
-// Grey is COLOR_BGR2GRAY's 15-bit fixed point, written out: what OpenCV 4.6 computes, and what
-// the shipped model was trained on.
+// The candidate features' pixel work as first written, one OpenCV call per step (resize,
+// cvtColor, convertTo, atan2): the reference the fast path (candidate_features.cpp, which reads
+// the pixels it needs in place) must equal bit for bit, so that a model trained on either holds
+// on both. The blob's geometry (verify/candidate_geometry.h) is the features' own.
 #pragma once
 
 #include <algorithm>
@@ -12,17 +11,12 @@
 #include <opencv2/imgproc.hpp>
 
 #include "rle_vision/verify/candidate_features.h"
+#include "verify/candidate_geometry.h"
 
 namespace rle_vision {
 namespace reference {
 
 constexpr int kPatch = 16, kCell = 8, kOrientations = 8, kChromaGrid = 4, kRingGrid = 32;
-
-inline cv::Rect grown(const Region& r, double margin, const cv::Size& size) {
-  const int w = r.right - r.left + 1, h = r.bottom - r.top + 1;
-  const int m = std::max(2, static_cast<int>(std::lround(margin * std::max(w, h))));
-  return cv::Rect(r.left - m, r.top - m, w + 2 * m, h + 2 * m) & cv::Rect(cv::Point(), size);
-}
 
 inline void yuvStats(const cv::Mat& grid, const cv::Rect& inner, double mean[2][3], double sd[2][3]) {
   int64_t sum[2][3] = {}, sum2[2][3] = {};
@@ -64,37 +58,15 @@ inline void orientations(const cv::Mat& grey, float* out) {
   for (int i = 0; i < count; ++i) out[i] = static_cast<float>(out[i] / norm);
 }
 
-inline cv::Mat greyOf(const cv::Mat& bgr) {
-  cv::Mat grey(bgr.size(), CV_8UC1);
-  for (int y = 0; y < bgr.rows; ++y) {
-    for (int x = 0; x < bgr.cols; ++x) {
-      const cv::Vec3b p = bgr.at<cv::Vec3b>(y, x);
-      grey.at<uint8_t>(y, x) = static_cast<uint8_t>((p[2] * 9798 + p[1] * 19235 + p[0] * 3735 + (1 << 14)) >> 15);
-    }
-  }
-  return grey;
-}
-
 inline void candidateFeatures(const cv::Mat& bgr, const FrameChroma& frame, const Region& r, CandidateFeatures* out) {
   float* f = out->data();
-  const double w = r.right - r.left + 1, h = r.bottom - r.top + 1;
-  const double trace = r.var_xx + r.var_yy, det = r.var_xx * r.var_yy - r.var_xy * r.var_xy;
-  const double disc = std::sqrt(std::max(0.0, trace * trace / 4 - det));
-  const double major = trace / 2 + disc, minor = std::max(0.0, trace / 2 - disc);
-  *f++ = static_cast<float>(std::log(std::max<uint32_t>(1, r.area)));
-  *f++ = static_cast<float>(r.area / (w * h));
-  *f++ = static_cast<float>(std::log(w / h));
-  *f++ = static_cast<float>(major > 0 ? std::sqrt(minor / major) : 1.0);
-  *f++ = static_cast<float>(r.cy / std::max(1, bgr.rows));
-  *f++ = static_cast<float>(r.cx / std::max(1, bgr.cols));
-  const cv::Rect box(r.left, r.top, static_cast<int>(w), static_cast<int>(h));
-  const cv::Rect around = grown(r, 0.5, bgr.size());
+  candidate_geometry::shapeFeatures(r, bgr.size(), f);
+  f += candidate_geometry::kShapeFeatureCount;
+  const cv::Rect around = candidate_geometry::grown(r, 0.5, bgr.size());
   cv::Mat grid, yuv;
   cv::resize(bgr(around), grid, cv::Size(kRingGrid, kRingGrid), 0, 0, cv::INTER_NEAREST);
   cv::cvtColor(grid, yuv, cv::COLOR_BGR2YUV);
-  const double sx = static_cast<double>(kRingGrid) / around.width, sy = static_cast<double>(kRingGrid) / around.height;
-  const cv::Rect inner(static_cast<int>(std::floor((box.x - around.x) * sx)), static_cast<int>(std::floor((box.y - around.y) * sy)),
-                       std::max(1, static_cast<int>(std::ceil(box.width * sx))), std::max(1, static_cast<int>(std::ceil(box.height * sy))));
+  const cv::Rect inner = candidate_geometry::boxOnGrid(candidate_geometry::box(r), around, kRingGrid);
   double mean[2][3], sd[2][3];
   yuvStats(yuv, inner, mean, sd);
   const double shift[3] = {0, frame.u - 128, frame.v - 128};
@@ -105,11 +77,12 @@ inline void candidateFeatures(const cv::Mat& bgr, const FrameChroma& frame, cons
   for (int c = 0; c < 3; ++c) *f++ = static_cast<float>(sd[0][c] / 255.0);
   for (int c = 0; c < 3; ++c) *f++ = static_cast<float>(mean[1][c] / 255.0);
   for (int c = 0; c < 3; ++c) *f++ = static_cast<float>((mean[0][c] - mean[1][c]) / 255.0);
-  const cv::Rect appearance = grown(r, 0.25, bgr.size());
+  const cv::Rect appearance = candidate_geometry::grown(r, 0.25, bgr.size());
   cv::Mat patch, grey, chroma;
   cv::resize(bgr(appearance), patch, cv::Size(kPatch, kPatch), 0, 0,
              appearance.width <= 2 * kPatch && appearance.height <= 2 * kPatch ? cv::INTER_AREA : cv::INTER_LINEAR);
-  greyOf(patch).convertTo(grey, CV_32F, 1.0 / 255.0);
+  cv::cvtColor(patch, grey, cv::COLOR_BGR2GRAY);
+  grey.convertTo(grey, CV_32F, 1.0 / 255.0);
   orientations(grey, f);
   f += (kPatch / kCell) * (kPatch / kCell) * kOrientations;
   cv::cvtColor(patch, chroma, cv::COLOR_BGR2YUV);
