@@ -1,10 +1,11 @@
 // make eval (ball verifier, issue 30): grouped cross-validation by date. For each date of DIR in
 // turn: the ball class calibrated on each other date (rle_vision_calibrate's core), the smallest
 // range holding them all (widened by --widen levels on every channel, 0 by default); its blobs
-// on the other dates' frames, the floor's colour taking the floor first, are the candidates a
+// on the other dates' frames, the floor's colour (grown by the floor guard's scale, chosen by
+// the training dates each held out in turn) taking the floor first, are the candidates a
 // verifier (verify/blob_verifier.h: one model per training date, trained without it) is trained
 // on (on a labelled ball: positive), as rle_vision_train does; then the held-out date's
-// candidates are scored and those at 0.5 or more kept. Beside it, on
+// candidates, made the same way, are scored and those at 0.5 or more kept. Beside it, on
 // the same frames: the calibrated range alone (what the tracker does without a verifier, and
 // what OpenCV's inRange pipeline finds at the same range), and the verifier with the field side
 // filter. Recall is over every labelled ball and over the balls on the field side.
@@ -18,6 +19,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +46,7 @@ struct HeldOutScore {
   int train_candidates = 0, train_positives = 0;
   double verify_ms = 0;  // features and scores, all frames
   int candidates = 0;
+  double floor_guard_scale = 1.0;  // chosen on the training dates
   void add(const HeldOutScore& o) {
     range.add(o.range), loose.add(o.loose), verified.add(o.verified), verified_on_field.add(o.verified_on_field);
     svm.add(o.svm), mlp.add(o.mlp), boost_with_field.add(o.boost_with_field);
@@ -64,7 +67,37 @@ float heightAboveField(const FieldResult& field, double cx, double cy, int rows)
   return field.boundary.found ? static_cast<float>(field.boundary.heightAbove(cx, cy) / rows) : 0.0f;
 }
 
-const ColorClass* floorOf(const FieldResult& field) { return field.colour.found ? &field.colour.range : nullptr; }
+// A labelled frame, read and its field found once: the nested cross-validation reads each
+// training frame once per floor guard scale it tries.
+struct LoadedFrame {
+  cv::Mat bgr;
+  std::vector<cv::Rect> balls;
+  FieldResult field;
+};
+using LoadedDates = std::map<const Date*, std::vector<LoadedFrame>>;
+
+LoadedDates loadDates(const std::vector<Date>& dates, int label_class) {
+  LoadedDates loaded;
+  for (const Date& d : dates) {
+    for (const std::string& path : d.images) {
+      LoadedFrame f;
+      f.bgr = cv::imread(path, cv::IMREAD_COLOR);
+      if (f.bgr.empty()) throw std::runtime_error(path + ": cannot read the image");
+      f.balls = readYoloBoxes(yoloLabelPath(path), label_class, f.bgr.size());
+      FieldDetector().detect(f.bgr, &f.field);
+      loaded[&d].push_back(std::move(f));
+    }
+  }
+  return loaded;
+}
+
+// The floor's colour as the candidates see it: the frame's field range grown by the floor
+// guard's scale (scaledRange), so the floor's outer pixels are the floor's and not the start of
+// a candidate.
+std::optional<ColorClass> candidatesFloor(const FieldResult& field, double floor_guard_scale) {
+  if (!field.colour.found) return std::nullopt;
+  return scaledRange(field.colour.range, floor_guard_scale);
+}
 
 // The candidates' range: the smallest holding the ball as calibrated on each date, widened.
 ColorClass candidateRange(const std::vector<const Date*>& dates, int label_class, int widen) {
@@ -73,28 +106,38 @@ ColorClass candidateRange(const std::vector<const Date*>& dates, int label_class
   return widenedRange(rangeCovering(calibrated), widen);
 }
 
-// The candidates of `dates`' frames (blobs of `range`) and their labels; with `above_field`, also
-// each candidate's height above the field boundary.
-VerifierTrainingSet collect(const std::vector<const Date*>& dates, const ColorClass& range, int label_class,
-                            cv::Mat* above_field = nullptr) {
-  VerifierTrainingSet set(range, bench::kMinBallBlobArea);
+// The candidates of `dates`' frames (blobs of `range`) and their labels, each date its group;
+// the floor's range grown by `floor_guard_scale` first; with `above_field`, also each candidate's
+// height above the field boundary.
+VerifierTrainingSet collect(const LoadedDates& loaded, const std::vector<const Date*>& dates, const ColorClass& range,
+                            double floor_guard_scale, cv::Mat* above_field = nullptr) {
+  VerifierTrainingSet set(range, bench::kMinBallBlobArea, floor_guard_scale);
   for (size_t g = 0; g < dates.size(); ++g) {
     set.setGroup(static_cast<int>(g));
-    for (const std::string& path : dates[g]->images) {
-      const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
-      if (bgr.empty()) throw std::runtime_error(path + ": cannot read the image");
+    for (const LoadedFrame& f : loaded.at(dates[g])) {
       const int before = set.features().rows;
-      FieldResult field;
-      FieldDetector().detect(bgr, &field);
-      set.addFrame(bgr, readYoloBoxes(yoloLabelPath(path), label_class, bgr.size()), floorOf(field));
-      if (!above_field || set.features().rows == before) continue;
-      for (int i = before; i < set.features().rows; ++i) {  // features 4 and 5: the centroid's row and column
-        const float* f = set.features().ptr<float>(i);
-        above_field->push_back(heightAboveField(field, f[5] * bgr.cols, f[4] * bgr.rows, bgr.rows));
+      set.addFrame(f.bgr, f.balls, f.field.colour.found ? &f.field.colour.range : nullptr);
+      for (int i = before; above_field && i < set.features().rows; ++i) {  // features 4 and 5: the centroid's row and column
+        const float* x = set.features().ptr<float>(i);
+        above_field->push_back(heightAboveField(f.field, x[5] * f.bgr.cols, x[4] * f.bgr.rows, f.bgr.rows));
       }
     }
   }
   return set;
+}
+
+// The floor guard's scale chosen on the training dates alone, as rle_vision_train chooses the
+// shipped one (chooseFloorGuardScale: grouped cross-validation, each training date held out).
+double floorGuardScaleOnTraining(const LoadedDates& loaded, const std::vector<const Date*>& training,
+                                 const ColorClass& range) {
+  std::vector<VerifierTrainingSet> sets;
+  for (double scale : floorGuardScalesTried()) sets.push_back(collect(loaded, training, range, scale));
+  std::vector<double> f1;
+  const double chosen = chooseFloorGuardScale(sets, &f1);
+  for (size_t k = 0; k < sets.size(); ++k) {
+    std::printf("  floor guard scale %.1f: training dates' held-out mean F1 %.3f\n", sets[k].floorGuardScale(), f1[k]);
+  }
+  return chosen;
 }
 
 using bench::AlternativeModel;
@@ -112,13 +155,15 @@ void keepByAlternatives(const std::vector<AlternativeModel>& models, const Candi
   }
 }
 
-HeldOutScore evaluate(const Date& held_out, const std::vector<const Date*>& training, int label_class, int widen,
-                      bool compare_models) {
+HeldOutScore evaluate(const LoadedDates& loaded, const Date& held_out, const std::vector<const Date*>& training,
+                      int label_class, int widen, bool compare_models) {
   HeldOutScore s;
   const ColorClass calibrated = bench::calibrateBall(training, label_class);
   const ColorClass candidates_range = candidateRange(training, label_class, widen);
+  s.floor_guard_scale = floorGuardScaleOnTraining(loaded, training, candidates_range);
   cv::Mat above_field;
-  const VerifierTrainingSet set = collect(training, candidates_range, label_class, compare_models ? &above_field : nullptr);
+  const VerifierTrainingSet set =
+      collect(loaded, training, candidates_range, s.floor_guard_scale, compare_models ? &above_field : nullptr);
   s.train_candidates = static_cast<int>(set.labels().size());
   s.train_positives = set.positives();
   const BlobVerifier verifier = BlobVerifier::trainAcrossGroups(set.features(), set.labels(), set.groups());
@@ -134,17 +179,15 @@ HeldOutScore evaluate(const Date& held_out, const std::vector<const Date*>& trai
   Segmenter segmenter;
   std::vector<Region> regions;
   CandidateFeatures x;
-  for (const std::string& path : held_out.images) {
-    const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
-    if (bgr.empty()) throw std::runtime_error(path + ": cannot read the image");
-    FieldResult field;
-    FieldDetector().detect(bgr, &field);
-    const bench::BallTruth truth =
-        bench::ballTruth(readYoloBoxes(yoloLabelPath(path), label_class, bgr.size()), field.boundary);
+  for (const LoadedFrame& f : loaded.at(&held_out)) {
+    const cv::Mat& bgr = f.bgr;
+    const FieldResult& field = f.field;
+    const bench::BallTruth truth = bench::ballTruth(f.balls, field.boundary);
     BallScore unused;
     range_alone.ours(bgr, truth, field, &s.range, &unused);
     const auto start = std::chrono::steady_clock::now();
-    candidateRegions(&segmenter, bgr, candidates_range, floorOf(field), bench::kMinBallBlobArea, &regions);
+    const std::optional<ColorClass> floor = candidatesFloor(field, s.floor_guard_scale);
+    candidateRegions(&segmenter, bgr, candidates_range, floor ? &*floor : nullptr, bench::kMinBallBlobArea, &regions);
     std::vector<cv::Point2d> kept, kept_on_field, all, kept_by[3];
     const FrameChroma frame = regions.empty() ? FrameChroma() : frameChroma(bgr);
     for (const Region& r : regions) {
@@ -194,6 +237,7 @@ void run(const std::vector<Date>& dates, int label_class, int widen, bool compar
   std::printf("%-10s %-46s %6s %7s %7s %6s %9s %8s\n", "held out", "method", "balls", "recall", "field-r", "blobs",
               "precision", "ms/frame");
   std::vector<std::pair<std::string, double>> values;
+  const LoadedDates loaded = loadDates(dates, label_class);
   HeldOutScore all;
   std::map<std::string, double> worst;
   for (const Date& held_out : dates) {
@@ -201,7 +245,9 @@ void run(const std::vector<Date>& dates, int label_class, int widen, bool compar
     for (const Date& d : dates) {
       if (&d != &held_out) training.push_back(&d);
     }
-    const HeldOutScore s = evaluate(held_out, training, label_class, widen, compare_models);
+    const HeldOutScore s = evaluate(loaded, held_out, training, label_class, widen, compare_models);
+    std::printf("%-10s floor guard scale chosen on the training dates: %.1f\n", held_out.name.c_str(), s.floor_guard_scale);
+    values.emplace_back("dates." + held_out.name + ".floor_guard_scale", s.floor_guard_scale);
     for (size_t m = 0; m < kMethods.size(); ++m) printRow(held_out.name, kMethodNames[m], s.*kMethods[m].second);
     if (compare_models) {
       printRow(held_out.name, AlternativeModel::name(AlternativeModel::Kind::kSvm), s.svm);

@@ -227,22 +227,23 @@ void TrackerNodelet::onInit() {
 void TrackerNodelet::loadColours(const std::string& setting, int max_candidates_per_frame) {
   const std::string colors_file =
       setting.empty() ? ros::package::getPath("rle_vision") + "/config/colors.yaml" : setting;
+  std::vector<ColorClass> classes;
   try {
-    table_.store(std::make_shared<const ColorTable>(loadColorClasses(colors_file)));
+    classes = loadColorClasses(colors_file);
   } catch (const std::exception& e) {
     // Fail loudly at start: without classes the tracker cannot do anything useful.
     NODELET_FATAL("cannot load colour classes: %s. Set ~colors_file to a colors.yaml or CMVision colors.txt.", e.what());
     throw;
   }
-  NODELET_INFO("loaded %d colour classes from %s", table_.load()->size(), colors_file.c_str());
+  NODELET_INFO("loaded %zu colour classes from %s", classes.size(), colors_file.c_str());
   try {
-    screen_ = CandidateScreen(loadClassVerifiers(table_.load()->classes()),
-                              static_cast<uint32_t>(max_candidates_per_frame));
+    screen_ = CandidateScreen(loadClassVerifiers(classes), static_cast<uint32_t>(max_candidates_per_frame));
   } catch (const std::exception& e) {
     NODELET_FATAL("%s. Fix the class's verifier_file in %s (rle_vision_train writes the file), or remove it.", e.what(),
                   colors_file.c_str());
     throw;
   }
+  table_.store(std::make_shared<const ColorTable>(withFloorGuard(std::move(classes), screen_.verifiers())));
   for (const ClassVerifier& v : screen_.verifiers()) {
     NODELET_INFO("class '%s' is screened by a verifier: blobs scoring under %.2f are not published", v.class_name.c_str(),
                  v.min_score);
@@ -283,8 +284,9 @@ void TrackerNodelet::colorRangesCb(const ColorRangeArrayConstPtr& msg) {
     }
     return;
   }
-  // Built here, off the frame path; imageCb picks it up with its next snapshot.
-  auto table = std::make_shared<const ColorTable>(std::move(classes));
+  // Built here, off the frame path; imageCb picks it up with its next snapshot. The floor's
+  // guard follows the field class the set brings (screen_ is set once, before subscribing).
+  auto table = std::make_shared<const ColorTable>(withFloorGuard(std::move(classes), screen_.verifiers()));
   table_.store(table);
   warned_mono_ = false;
   {

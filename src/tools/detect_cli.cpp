@@ -153,7 +153,8 @@ bool annotate(const cv::Mat& image, const std::vector<TrackedBlob>& blobs, const
 class ImageDetector {
  public:
   ImageDetector(const std::vector<ColorClass>& classes, const LandmarkOptions& options, const FieldOptions& field)
-      : table_(classes), screen_(loadClassVerifiers(classes)), options_(options), field_options_(field) {
+      : classes_(classes), screen_(loadClassVerifiers(classes)), table_(withFloorGuard(classes, screen_.verifiers())),
+        options_(options), field_options_(field) {
     for (const ColorClass& c : classes) {
       if (c.name == kFieldClassName) configured_field_ = std::make_unique<ColorClass>(c);
     }
@@ -169,26 +170,35 @@ class ImageDetector {
     std::vector<TrackedBlob> blobs;
     LandmarkResult result;
     FieldResult field;
+    std::unique_ptr<ColorTable> floor_first;
     try {
-      ColorTracker tracker;  // a new one per image: nothing carries over
-      tracker.process(image, PixelFormat::BGR8, table_, 0.0, &blobs);
-      screen_.apply(image, table_, &blobs);
-      detector_.detectInImage(image, options_, &result);
       FieldDetector field_detector(field_options_);  // the field colour seeded on this image
       if (configured_field_) field_detector.setConfiguredColour(*configured_field_);
       field_detector.detect(image, &field);
+      // A verifier judges candidates made as in training: the image's floor colour first.
+      if (!screen_.empty() && field.colour.found) {
+        floor_first = std::make_unique<ColorTable>(
+            withFloorGuard(withFloorFirst(classes_, field.colour.range), screen_.verifiers()));
+      }
+      const ColorTable& table = floor_first ? *floor_first : table_;
+      ColorTracker tracker;  // a new one per image: nothing carries over
+      tracker.process(image, PixelFormat::BGR8, table, 0.0, &blobs);
+      screen_.apply(image, table, &blobs);
+      detector_.detectInImage(image, options_, &result);
     } catch (const std::exception& e) {
       std::cout << errorJson(path, e.what()) << std::endl;
       return false;
     }
-    std::cout << detectionJson(path, image.cols, image.rows, blobs, table_, result, field) << std::endl;
+    const ColorTable& table = floor_first ? *floor_first : table_;
+    std::cout << detectionJson(path, image.cols, image.rows, blobs, table, result, field) << std::endl;
     return annotate_dir.empty() ||
-           annotate(image, blobs, table_, result, field, annotate_dir + "/" + baseName(path) + ".png");
+           annotate(image, blobs, table, result, field, annotate_dir + "/" + baseName(path) + ".png");
   }
 
  private:
-  ColorTable table_;
+  std::vector<ColorClass> classes_;
   CandidateScreen screen_;  // classes with a verifier
+  ColorTable table_;        // the classes, with the floor's guard before a verified class (after screen_: it needs the verifiers)
   LandmarkOptions options_;
   FieldOptions field_options_;
   std::unique_ptr<ColorClass> configured_field_;  // the colours file's field class, if any

@@ -3,11 +3,14 @@
 // group's labelled boxes (rle_vision_calibrate's core); the candidates' range is the smallest
 // holding all of them (optionally widened); its blobs, with the floor's colour taking the floor's
 // pixels first as in the tracker, are the candidates; those on a labelled box are the positives.
-// With two or more groups the verifier is one model per group, trained without it (a candidate
-// scores their mean), and every group is held out in turn: a range and a verifier made
-// from the others score its candidates (grouped cross-validation).
+// The floor's range grown by a scale takes the floor's pixels first (the tracker's floor_guard
+// class): the scale is chosen among floorGuardScalesTried() by grouped cross-validation (each
+// folder held out in turn) and kept in the file. With two or more groups the verifier is one
+// model per group, trained without it (a candidate scores their mean), and every group is held
+// out in turn: a range, a floor guard scale and a verifier made from the others score its candidates.
 //
 //   rle_vision_train --class NAME --label-class N [--widen LEVELS] --output FILE FOLDER...
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -94,6 +97,7 @@ std::string folderName(const std::string& folder) {
 }
 
 using Groups = std::vector<std::vector<std::string>>;
+constexpr size_t kNone = static_cast<size_t>(-1);
 
 // The candidates' range: the smallest holding the class as calibrated on each group's labelled
 // boxes (all groups but `skip`; a group without any adds nothing), widened.
@@ -114,35 +118,81 @@ ColorClass candidateRange(const Arguments& a, const Groups& groups, size_t skip)
   return widenedRange(rangeCovering(calibrated), a.widen);
 }
 
-// The candidates of the frames of `groups` (only group `only`, or all but `skip`).
-VerifierTrainingSet candidates(const Arguments& a, const Groups& groups, const ColorClass& range, size_t skip,
-                               size_t only = static_cast<size_t>(-1)) {
-  VerifierTrainingSet set(range);
+// The candidates of the frames of `groups` (only group `only`, or all but `skip`), one set per
+// floor guard scale in `scales`: each frame read, and its floor found, once.
+std::vector<VerifierTrainingSet> candidates(const Arguments& a, const Groups& groups, const ColorClass& range,
+                                            const std::vector<double>& scales, size_t skip,
+                                            size_t only = static_cast<size_t>(-1)) {
+  std::vector<VerifierTrainingSet> sets;
+  for (double scale : scales) sets.emplace_back(range, 20, scale);
   for (size_t g = 0; g < groups.size(); ++g) {
     if (g == skip || (only != static_cast<size_t>(-1) && g != only)) continue;
-    set.setGroup(static_cast<int>(g));
+    for (VerifierTrainingSet& set : sets) set.setGroup(static_cast<int>(g));
     for (const std::string& path : groups[g]) {
       const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);
       if (bgr.empty()) throw std::runtime_error(path + ": cannot read the image");
       FieldResult field;
       FieldDetector().detect(bgr, &field);
-      set.addFrame(bgr, readYoloBoxes(yoloLabelPath(path), a.label_class, bgr.size()),
-                   field.colour.found ? &field.colour.range : nullptr);
+      const std::vector<cv::Rect> boxes = readYoloBoxes(yoloLabelPath(path), a.label_class, bgr.size());
+      for (VerifierTrainingSet& set : sets) set.addFrame(bgr, boxes, field.colour.found ? &field.colour.range : nullptr);
     }
   }
-  return set;
+  return sets;
+}
+
+// The floor guard's scale chosen on `sets` (chooseFloorGuardScale), printed with each scale's
+// held-out F1 (`indent` before each line); returns the index of its set.
+size_t chosenScale(const std::vector<VerifierTrainingSet>& sets, const std::string& indent, std::string* note) {
+  std::vector<double> f1;
+  const double scale = chooseFloorGuardScale(sets, &f1);
+  std::vector<int> groups(sets[0].groups());
+  std::sort(groups.begin(), groups.end());
+  if (std::unique(groups.begin(), groups.end()) - groups.begin() < 2) {
+    char line[160];
+    std::snprintf(line, sizeof(line), "%sfloor guard scale %.1f: one folder, none held out to choose another", indent.c_str(), scale);
+    std::printf("%s\n", line);
+    if (note) *note += std::string(line) + "\n";
+    return 0;
+  }
+  size_t chosen = 0;
+  for (size_t k = 0; k < sets.size(); ++k) {
+    if (sets[k].floorGuardScale() == scale) chosen = k;
+    char line[160];
+    std::snprintf(line, sizeof(line), "%sfloor guard scale %.1f: held-out mean F1 %.3f%s", indent.c_str(),
+                  sets[k].floorGuardScale(), f1[k], sets[k].floorGuardScale() == scale ? " (chosen)" : "");
+    std::printf("%s\n", line);
+    if (note) *note += std::string(line) + "\n";
+  }
+  return chosen;
+}
+
+// Each folder held out: its range, its floor guard's scale and its verifier come from the other
+// folders only; its candidates scored. The lines go to the model file's note too.
+void printHeldOut(const Arguments& a, const Groups& groups, std::string* note) {
+  for (size_t held = 0; held < groups.size() && groups.size() > 1; ++held) {
+    const ColorClass held_range = candidateRange(a, groups, held);
+    const std::vector<VerifierTrainingSet> others = candidates(a, groups, held_range, floorGuardScalesTried(), held);
+    std::printf("held out %s: the floor guard's scale chosen on the other folders\n", folderName(a.folders[held]).c_str());
+    const VerifierTrainingSet& chosen = others[chosenScale(others, "  ", nullptr)];
+    if (chosen.positives() == 0 || chosen.positives() == static_cast<int>(chosen.labels().size())) continue;
+    const VerifierTrainingSet held_set = candidates(a, groups, held_range, {chosen.floorGuardScale()}, kNone, held)[0];
+    char what[96];
+    std::snprintf(what, sizeof(what), "held out %s (scale %.1f)", folderName(a.folders[held]).c_str(), chosen.floorGuardScale());
+    *note += printScores(what,
+                         BlobVerifier::trainAcrossGroups(chosen.features(), chosen.labels(), chosen.groups()), held_set) +
+             "\n";
+  }
 }
 
 int run(const Arguments& a) {
-  constexpr size_t kNone = static_cast<size_t>(-1);
   Groups groups;
   for (const std::string& folder : a.folders) {
     groups.push_back(imagesUnderFolder(folder));
     if (groups.back().empty()) throw std::runtime_error(folder + ": no .jpg, .jpeg or .png images in it or below it");
   }
   const ColorClass range = candidateRange(a, groups, kNone);
-  const VerifierTrainingSet all = candidates(a, groups, range, kNone);
-  if (all.positives() == 0) {
+  const std::vector<VerifierTrainingSet> by_scale = candidates(a, groups, range, floorGuardScalesTried(), kNone);
+  if (by_scale[0].positives() == 0) {
     throw std::runtime_error("no candidate lies on a labelled " + a.name + ": check --label-class and --widen");
   }
   std::printf("candidates: %s YUV [%d %d %d]..[%d %d %d] (calibrated per folder, covered, widened by %d)\n", a.name.c_str(), range.min[0],
@@ -155,24 +205,20 @@ int run(const Arguments& a) {
     note += " " + folderName(a.folders[g]);
     frames += groups[g].size();
   }
-  note += " (" + std::to_string(frames) + " frames). Candidate-level figures, 0.5 the threshold:\n";
-  // Each folder held out: its range and its verifier come from the other folders only.
-  for (size_t held = 0; held < groups.size() && groups.size() > 1; ++held) {
-    const ColorClass held_range = candidateRange(a, groups, held);
-    const VerifierTrainingSet others = candidates(a, groups, held_range, held);
-    if (others.positives() == 0 || others.positives() == static_cast<int>(others.labels().size())) continue;
-    note += printScores("held out " + folderName(a.folders[held]),
-                        BlobVerifier::trainAcrossGroups(others.features(), others.labels(), others.groups()),
-                        candidates(a, groups, held_range, kNone, held)) + "\n";
-  }
+  note += " (" + std::to_string(frames) + " frames).\nThe floor guard's scale (the floor's range grown about its centre), "
+          "chosen by grouped cross-validation (each folder held out in turn):\n";
+  const VerifierTrainingSet& all = by_scale[chosenScale(by_scale, "", &note)];
+  note += "Candidate-level figures, 0.5 the threshold:\n";
+  printHeldOut(a, groups, &note);
   BlobVerifier verifier = BlobVerifier::trainAcrossGroups(all.features(), all.labels(), all.groups());
   verifier.setCandidateRange(range);
+  verifier.setFloorGuardScale(all.floorGuardScale());
   note += std::to_string(verifier.modelCount()) + (verifier.modelCount() > 1 ? " models, one per folder, each trained without it; a "
                                                                               "candidate scores their mean\n"
                                                                             : " model\n");
   note += printScores("training (all folders)", verifier, all);
   verifier.save(a.output, note);
-  std::printf("wrote %s\n", a.output.c_str());
+  std::printf("wrote %s (floor guard scale %.1f)\n", a.output.c_str(), all.floorGuardScale());
   return 0;
 }
 

@@ -11,6 +11,12 @@ namespace rle_vision {
 // At most this many classes fit in one pass of the per-channel bit tables.
 constexpr int kMaxColorClasses = 32;
 
+// The class the field stage's colour is published as (the floor's colour, learned).
+constexpr const char* kFieldClassName = "field";
+// The tracker's hidden class just before a class with a verifier: the floor's colour widened by
+// the verifier's floor margin (verify/candidate_screen.h, withFloorGuard). It yields no blob.
+constexpr const char* kFloorGuardClassName = "floor_guard";
+
 enum class ColorSpace : uint8_t {
   YUV = 0,  // OpenCV COLOR_BGR2YUV on RGB input; the camera's own YUV on yuv422 input
   RGB = 1,

@@ -16,9 +16,6 @@
 
 namespace rle_vision {
 
-// The class the field stage's colour is published as.
-constexpr const char* kFieldClassName = "field";
-
 // The parameters (enabled: the ROS parameter `learning`, publish_period_s) are the
 // LEARNING_LOOP group of landmark_params.def, with their defaults and meanings.
 struct LearningLoopOptions {

@@ -57,6 +57,11 @@ class BlobVerifier {
   // verifier was trained on that range's blobs and judges them only).
   void setCandidateRange(const ColorClass& range) { candidate_range_ = range; }
   const ColorClass& candidateRange() const { return candidate_range_; }
+  // The floor guard's scale its candidates were made with (1: none, as in files made before
+  // it): at run time the floor's range grown by it (scaledRange) takes its pixels before the
+  // candidates' range does (withFloorGuard, verify/candidate_screen.h).
+  void setFloorGuardScale(double scale) { floor_guard_scale_ = scale; }
+  double floorGuardScale() const { return floor_guard_scale_; }
 
   // The models and the candidate range as a YAML or XML file (OpenCV FileStorage; a name
   // ending in .gz is compressed), with the feature count and version checked on load. Both throw
@@ -71,6 +76,7 @@ class BlobVerifier {
   std::vector<cv::Ptr<cv::ml::Boost>> models_;
   std::vector<BoostedTrees> flat_models_;  // the same models, scored without OpenCV's overhead
   ColorClass candidate_range_;
+  double floor_guard_scale_ = 1.0;
 };
 
 }  // namespace rle_vision

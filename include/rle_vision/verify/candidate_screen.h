@@ -29,6 +29,22 @@ struct ClassVerifier {
 // naming the class and the file when one cannot be read.
 std::vector<ClassVerifier> loadClassVerifiers(const std::vector<ColorClass>& classes);
 
+// The classes as the tracker segments them for `verifiers`: a floor_guard class already among
+// them is dropped; then, when the field class comes before a class whose verifier keeps a floor
+// guard (BlobVerifier::floorGuardScale over 1), a floor_guard class (the field's range grown by
+// the largest such scale, scaledRange) goes just before the first such class, as the
+// verifier's candidates were made in training. The guard only takes pixels: no region of it is ever a blob. Without a
+// field class before them, with a wrapping field range or with no room left (kMaxColorClasses),
+// the classes come back without a guard.
+std::vector<ColorClass> withFloorGuard(std::vector<ColorClass> classes, const std::vector<ClassVerifier>& verifiers);
+
+// The classes with `floor` (the frame's floor colour, the field stage's) as the field class, as
+// a verifier's candidates were made in training (the floor's pixels the floor's first): in place
+// of a field class's range, else just before the first class with a verifier, taking pixels but
+// yielding no blob; with no class with a verifier, or no room, unchanged. For a lone image; a
+// camera stream gets the field class from the colour learning loop.
+std::vector<ColorClass> withFloorFirst(std::vector<ColorClass> classes, const ColorClass& floor);
+
 struct ScreeningCounts {
   uint32_t candidates = 0;  // blobs of classes with a verifier
   uint32_t scored = 0;

@@ -5,8 +5,9 @@
 namespace rle_vision {
 
 CameraStream::CameraStream(const std::vector<ColorClass>& classes, const CameraStreamOptions& options)
-    : table_(std::make_shared<const ColorTable>(classes)), options_(options), loop_(classes),
+    : options_(options), loop_(classes),
       screen_(loadClassVerifiers(classes), options.verifier_max_candidates_per_frame), field_(options.field) {
+  table_ = std::make_shared<const ColorTable>(withFloorGuard(classes, screen_.verifiers()));
   for (const ColorClass& c : classes) {
     if (c.name == kFieldClassName) field_.setConfiguredColour(c);  // the floor's colour seeds from it
   }
@@ -29,7 +30,7 @@ void CameraStream::process(const cv::Mat& bgr, double stamp_s, Frame* frame) {
   if (!step.publish) return;
   // As the tracker does with color_ranges: a set it cannot use is reported, the table kept.
   try {
-    table_ = std::make_shared<const ColorTable>(step.classes);
+    table_ = std::make_shared<const ColorTable>(withFloorGuard(step.classes, screen_.verifiers()));
   } catch (const std::invalid_argument& e) {
     frame->ignored_ranges = e.what();
   }

@@ -14,6 +14,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "rle_vision/color/color_class.h"
+
 namespace rle_vision {
 namespace test {
 
@@ -52,6 +54,68 @@ inline VerifierFrame drawVerifierFrame(cv::RNG& rng) {
     patch.emplace_back(at + cv::Point(static_cast<int>(r * std::cos(a)), static_cast<int>(r * std::sin(a))));
   }
   cv::fillPoly(f.bgr, std::vector<std::vector<cv::Point>>{patch}, yellow * 0.9);
+  return f;
+}
+
+// A floor with a fringe, for the floor guard (verifier_training.h, floorGuardScalesTried): the
+// floor learned as its colour +-15 on every YUV channel; strips 17 levels brighter (a line's
+// fringe, a vignetted edge), beyond that range but inside it grown 1.5 times (+-22.5); balls and
+// upright bars 40 levels brighter, beyond it grown 2.5 times (+-37.5) but inside it grown 3 times
+// (+-45). One ball sits at a strip's end, where, with nothing taking the strip, it is one
+// candidate with it, centred off the ball; the other ball and the bar stand free. `permissive`
+// holds the strips, the balls and the bars.
+struct FringeScene {
+  ColorClass floor, permissive;
+};
+
+inline cv::Scalar floorYuv() {
+  cv::Mat yuv;
+  cv::cvtColor(cv::Mat(1, 1, CV_8UC3, cv::Scalar(60, 120, 70)), yuv, cv::COLOR_BGR2YUV);
+  const cv::Vec3b v = yuv.at<cv::Vec3b>(0);
+  return cv::Scalar(v[0], v[1], v[2]);
+}
+
+// The floor's colour brightened by `dy` levels of Y, as BGR.
+inline cv::Scalar floorBrightenedBy(int dy) {
+  const cv::Scalar f = floorYuv();
+  cv::Mat bgr;
+  cv::cvtColor(cv::Mat(1, 1, CV_8UC3, cv::Scalar(f[0] + dy, f[1], f[2])), bgr, cv::COLOR_YUV2BGR);
+  const cv::Vec3b b = bgr.at<cv::Vec3b>(0);
+  return cv::Scalar(b[0], b[1], b[2]);
+}
+
+inline FringeScene fringeScene() {
+  const cv::Scalar f = floorYuv();
+  FringeScene s;
+  s.floor.name = "field";
+  s.permissive.name = "ball";
+  for (int c = 0; c < 3; ++c) {
+    s.floor.min[c] = static_cast<uint8_t>(f[c] - 15);
+    s.floor.max[c] = static_cast<uint8_t>(f[c] + 15);
+    s.permissive.min[c] = static_cast<uint8_t>(c == 0 ? f[c] + 8 : f[c] - 20);
+    s.permissive.max[c] = static_cast<uint8_t>(c == 0 ? f[c] + 70 : f[c] + 20);
+  }
+  return s;
+}
+
+inline VerifierFrame drawFringeFrame(cv::RNG& rng) {
+  VerifierFrame f;
+  f.bgr = cv::Mat(240, 320, CV_8UC3, floorBrightenedBy(0));
+  const cv::Scalar bright = floorBrightenedBy(40);
+  // Two strips, the first ending in a ball.
+  const int y1 = rng.uniform(30, 90), x1 = rng.uniform(10, 40), y2 = rng.uniform(150, 200);
+  cv::rectangle(f.bgr, cv::Rect(x1, y1, 80, 6), floorBrightenedBy(17), cv::FILLED);
+  cv::rectangle(f.bgr, cv::Rect(rng.uniform(10, 60), y2, 80, 6), floorBrightenedBy(17), cv::FILLED);
+  const int r1 = rng.uniform(7, 11), r2 = rng.uniform(7, 11);
+  const cv::Point at_strip(x1 + 80 + r1 - 1, y1 + 3), free_ball(rng.uniform(200, 300), rng.uniform(150, 225));
+  cv::circle(f.bgr, at_strip, r1, bright, cv::FILLED);
+  cv::circle(f.bgr, free_ball, r2, bright, cv::FILLED);
+  cv::rectangle(f.bgr, cv::Rect(rng.uniform(230, 300), rng.uniform(20, 80), 5, 40), bright, cv::FILLED);  // a bar
+  f.balls = {cv::Rect(at_strip.x - r1, at_strip.y - r1, 2 * r1 + 1, 2 * r1 + 1),
+             cv::Rect(free_ball.x - r2, free_ball.y - r2, 2 * r2 + 1, 2 * r2 + 1)};
+  cv::Mat noise(f.bgr.size(), CV_8UC3);
+  rng.fill(noise, cv::RNG::NORMAL, 0, 1.5);
+  f.bgr += noise;
   return f;
 }
 

@@ -136,6 +136,7 @@ void BlobVerifier::save(const std::string& path, const std::string& note) const 
   file << "candidate_range" << "{" << "name" << c.name << "space" << toString(c.space) << "min"
        << std::vector<int>{c.min[0], c.min[1], c.min[2]} << "max" << std::vector<int>{c.max[0], c.max[1], c.max[2]}
        << "min_area_px" << static_cast<int>(c.min_area_px) << "}";
+  file << "floor_guard_scale" << floor_guard_scale_;
   file << "models" << "[";
   for (const auto& model : models_) {
     file << "{";
@@ -181,6 +182,12 @@ BlobVerifier BlobVerifier::load(const std::string& path) {
     if (lo[c] < 0 || lo[c] > 255 || hi[c] < 0 || hi[c] > 255) throw std::runtime_error(path + ": candidate_range out of 0..255");
     verifier.candidate_range_.min[c] = static_cast<uint8_t>(lo[c]);
     verifier.candidate_range_.max[c] = static_cast<uint8_t>(hi[c]);
+  }
+  const cv::FileNode guard_scale = root["floor_guard_scale"];
+  if (!guard_scale.empty()) {
+    const double scale = guard_scale.isReal() || guard_scale.isInt() ? static_cast<double>(guard_scale) : 0.0;
+    if (!(scale >= 1.0 && scale <= 16.0)) throw std::runtime_error(path + ": floor_guard_scale is not a number from 1 to 16");
+    verifier.floor_guard_scale_ = scale;
   }
   // "model": one model, as files before the models across groups held it.
   std::vector<cv::FileNode> nodes;

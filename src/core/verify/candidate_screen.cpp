@@ -1,7 +1,10 @@
 #include "rle_vision/verify/candidate_screen.h"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
+
+#include "rle_vision/verify/verifier_training.h"
 
 namespace rle_vision {
 
@@ -17,6 +20,59 @@ std::vector<ClassVerifier> loadClassVerifiers(const std::vector<ColorClass>& cla
     }
   }
   return verifiers;
+}
+
+namespace {
+
+// `range` as a class named `name` that takes its pixels from the classes after it but is never
+// a blob itself (no region reaches its minimum area) and has no verifier.
+ColorClass pixelsOnlyClass(ColorClass range, const char* name) {
+  range.name = name;
+  range.min_area_px = std::numeric_limits<uint32_t>::max();
+  range.verifier_file.clear();
+  range.verifier_path.clear();
+  return range;
+}
+
+}  // namespace
+
+std::vector<ColorClass> withFloorGuard(std::vector<ColorClass> classes, const std::vector<ClassVerifier>& verifiers) {
+  classes.erase(std::remove_if(classes.begin(), classes.end(),
+                               [](const ColorClass& c) { return c.name == kFloorGuardClassName; }),
+                classes.end());
+  const auto field = std::find_if(classes.begin(), classes.end(), [](const ColorClass& c) { return c.name == kFieldClassName; });
+  if (field == classes.end() || static_cast<int>(classes.size()) >= kMaxColorClasses) return classes;
+  for (int c = 0; c < 3; ++c) {
+    if (field->min[c] > field->max[c]) return classes;  // a wrapping range cannot be grown as one box
+  }
+  auto scaleOf = [&](const ColorClass& c) {
+    double scale = 1.0;
+    for (const ClassVerifier& v : verifiers) scale = v.class_name == c.name ? v.model->floorGuardScale() : scale;
+    return scale;
+  };
+  double scale = 1.0;
+  auto first_guarded = classes.end();
+  for (auto c = field + 1; c != classes.end(); ++c) {
+    if (scaleOf(*c) <= 1.0) continue;
+    if (first_guarded == classes.end()) first_guarded = c;
+    scale = std::max(scale, scaleOf(*c));
+  }
+  if (first_guarded == classes.end()) return classes;
+  classes.insert(first_guarded, pixelsOnlyClass(scaledRange(*field, scale), kFloorGuardClassName));
+  return classes;
+}
+
+std::vector<ColorClass> withFloorFirst(std::vector<ColorClass> classes, const ColorClass& floor) {
+  const auto verified = std::find_if(classes.begin(), classes.end(), [](const ColorClass& c) { return !c.verifier_file.empty(); });
+  if (verified == classes.end()) return classes;
+  for (ColorClass& c : classes) {
+    if (c.name != kFieldClassName) continue;
+    c.space = floor.space, c.min = floor.min, c.max = floor.max;
+    return classes;
+  }
+  if (static_cast<int>(classes.size()) >= kMaxColorClasses) return classes;
+  classes.insert(verified, pixelsOnlyClass(floor, kFieldClassName));
+  return classes;
 }
 
 const std::vector<int>& CandidateScreen::verifierOfLabel(const ColorTable& table) {

@@ -4,6 +4,7 @@
 // --verifier uses on unseen frames; both refuse bad input with a one-line reason and exit status 2.
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -14,6 +15,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "rle_vision/verify/blob_verifier.h"
+#include "rle_vision/verify/verifier_training.h"
 #include "testing/test_helpers.h"
 #include "testing/verifier_scenes.h"
 
@@ -67,6 +69,12 @@ TEST(TrainCli, WritesAVerifierThatLoadsAndReportsHeldOutFolders) {
   EXPECT_NE(head.find("# held out a "), std::string::npos) << head.substr(0, 800);
   EXPECT_NE(head.find("# 2 models, one per folder, each trained without it"), std::string::npos) << head.substr(0, 800);
   EXPECT_EQ(verifier.modelCount(), 2);
+  // The floor guard's scale, chosen by the folders held out in turn, is kept in the file.
+  char chosen_line[64];
+  std::snprintf(chosen_line, sizeof(chosen_line), "# floor guard scale %.1f: held-out mean F1", verifier.floorGuardScale());
+  EXPECT_NE(head.find(chosen_line), std::string::npos) << head.substr(0, 800);
+  const std::vector<double>& tried = floorGuardScalesTried();
+  EXPECT_NE(std::find(tried.begin(), tried.end(), verifier.floorGuardScale()), tried.end());
 
   // rle_vision_detect --verifier on frames neither folder had: the ball is found with its score
   // (its class and range come from the verifier file), the same-coloured shapes are not.

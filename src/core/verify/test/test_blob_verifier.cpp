@@ -58,9 +58,11 @@ TEST(BlobVerifier, ModelFileRoundTripsAndBadInputIsRefused) {
   const VerifierTrainingSet train = candidatesOf(20, 5);
   BlobVerifier verifier = BlobVerifier::train(train.features(), train.labels());
   verifier.setCandidateRange(yellowRange());
+  verifier.setFloorGuardScale(2.5);
   const std::string path = testing::TempDir() + "/rle_vision_verifier.yml";
   verifier.save(path);
   const BlobVerifier loaded = BlobVerifier::load(path);
+  EXPECT_DOUBLE_EQ(loaded.floorGuardScale(), 2.5);
   for (int i = 0; i < train.features().rows; ++i) {
     CandidateFeatures x;
     std::copy(train.features().ptr<float>(i), train.features().ptr<float>(i) + kCandidateFeatureCount, x.begin());
@@ -76,6 +78,20 @@ TEST(BlobVerifier, ModelFileRoundTripsAndBadInputIsRefused) {
   const size_t found = text.find("feature_version: " + std::to_string(kCandidateFeatureVersion) + "\n");
   ASSERT_NE(found, std::string::npos);
   const size_t at = text.rfind('\n', found) + 1;  // the line, with its indentation
+  // A file from before the floor guard (no floor_guard_scale) loads with none (scale 1); a scale
+  // that is not a number from 1 to 16 is refused.
+  const std::string margin_line = "floor_guard_scale: 2.5000000000000000e+00\n";
+  const size_t margin_at = text.find(margin_line);
+  ASSERT_NE(margin_at, std::string::npos);
+  const std::string margin_path = testing::TempDir() + "/rle_vision_verifier_margin.yml";
+  const size_t margin_line_start = text.rfind('\n', margin_at) + 1;  // with its indentation
+  std::ofstream(margin_path) << std::string(text).erase(margin_line_start, margin_at + margin_line.size() - margin_line_start);
+  EXPECT_DOUBLE_EQ(BlobVerifier::load(margin_path).floorGuardScale(), 1.0);
+  for (const char* bad : {"floor_guard_scale: 0.5\n", "floor_guard_scale: 17\n", "floor_guard_scale: .nan\n",
+                          "floor_guard_scale: two\n"}) {
+    std::ofstream(margin_path) << std::string(text).replace(margin_at, margin_line.size(), bad);
+    EXPECT_THROW(BlobVerifier::load(margin_path), std::runtime_error) << bad;
+  }
   const std::string old_path = testing::TempDir() + "/rle_vision_verifier_v1.yml";
   std::ofstream(old_path) << text.erase(at, text.find('\n', at) + 1 - at);
   try {
@@ -216,6 +232,75 @@ TEST(CandidateRange, TheFloorsColourFirstKeepsTheBallACandidateOfItsOwn) {
   candidateRegions(&segmenter, bgr, permissive, &floor, 20, &candidates);
   EXPECT_EQ(nearBall(candidates), 1);
   for (const Region& r : candidates) EXPECT_EQ(r.label, 2);  // the floor's own regions are not candidates
+}
+
+// Grouped cross-validation counts every labelled object, found or not, and every kept candidate.
+// On floors with a fringe, the floor guard's scale chosen on it takes the fringe (a ball at a
+// strip's end is one candidate with it without a guard, centred off the ball) and leaves the
+// balls (the floor grown 3 times takes them).
+TEST(FloorGuardScale, IsChosenLargeEnoughToTakeTheFringeAndSmallEnoughToLeaveTheBalls) {
+  const test::FringeScene scene = test::fringeScene();
+  ASSERT_EQ(floorGuardScalesTried(), (std::vector<double>{1.0, 1.5, 2.0, 2.5, 3.0}));
+  std::vector<VerifierTrainingSet> sets;
+  for (double scale : floorGuardScalesTried()) sets.emplace_back(scene.permissive, 20, scale);
+  cv::RNG rng(21);
+  for (int group = 0; group < 3; ++group) {
+    for (int i = 0; i < 12; ++i) {
+      const test::VerifierFrame f = test::drawFringeFrame(rng);
+      for (VerifierTrainingSet& set : sets) {
+        set.setGroup(group);
+        set.addFrame(f.bgr, f.balls, &scene.floor);
+      }
+    }
+  }
+  // Scale 1.5: every ball is a candidate of its own, and so is every bar.
+  EXPECT_EQ(sets[1].objectsInGroup(0), 24);
+  EXPECT_EQ(sets[1].positives(), 72);
+  EXPECT_EQ(static_cast<int>(sets[1].labels().size()), 108);
+  // No guard: the balls at a strip's end are not.
+  EXPECT_LE(sets[0].positives(), 40);
+  const std::vector<HeldOutCounts> held = crossValidateByGroup(sets[1]);
+  ASSERT_EQ(held.size(), 3u);
+  for (const HeldOutCounts& h : held) {
+    EXPECT_EQ(h.objects, 24);
+    EXPECT_GE(h.found, 23) << "group " << h.group;
+    EXPECT_LE(h.kept, h.kept_on_object + 1) << "group " << h.group;
+  }
+  std::vector<double> f1;
+  const double chosen = chooseFloorGuardScale(sets, &f1);
+  std::printf("[ floor    ] held-out mean F1 by scale: %.3f %.3f %.3f %.3f %.3f, chosen %.1f\n", f1[0], f1[1], f1[2],
+              f1[3], f1[4], chosen);
+  EXPECT_GE(chosen, 1.5);
+  EXPECT_LE(chosen, 2.5);
+  const double best = *std::max_element(f1.begin(), f1.end());
+  EXPECT_LT(f1[0], best - 0.1);  // the fringe taken with the balls
+  EXPECT_LT(f1[4], best - 0.1);  // the balls taken with the floor
+  // One group: nothing can be held out, the first set's scale.
+  std::vector<VerifierTrainingSet> one;
+  one.emplace_back(scene.permissive, 20, 1.5);
+  one.back().addFrame(test::drawFringeFrame(rng).bgr, {}, &scene.floor);
+  EXPECT_DOUBLE_EQ(chooseFloorGuardScale(one), 1.5);
+  EXPECT_THROW(chooseFloorGuardScale({}), std::invalid_argument);
+  EXPECT_THROW(VerifierTrainingSet(scene.permissive, 20, 0.5), std::invalid_argument);
+  EXPECT_THROW(VerifierTrainingSet(scene.permissive, 20, std::nan("")), std::invalid_argument);
+}
+
+TEST(FloorGuardScale, ARangeGrowsAboutItsCentreAndStaysInTheChannel) {
+  const ColorClass range = test::makeClass("field", ColorSpace::YUV, {{100, 10, 240}}, {{120, 30, 250}});
+  const ColorClass same = scaledRange(range, 1.0);
+  EXPECT_EQ(same.min, range.min);
+  EXPECT_EQ(same.max, range.max);
+  const ColorClass grown = scaledRange(range, 2.0);
+  EXPECT_EQ(grown.min, (Channels{{90, 0, 235}}));
+  EXPECT_EQ(grown.max, (Channels{{130, 40, 255}}));
+  const ColorClass odd = scaledRange(range, 1.5);  // half widths 15 and 7.5: grown outwards
+  EXPECT_EQ(odd.min, (Channels{{95, 5, 237}}));
+  EXPECT_EQ(odd.max, (Channels{{125, 35, 253}}));
+  EXPECT_THROW(scaledRange(range, 0.9), std::invalid_argument);
+  ColorClass hue = range;
+  hue.space = ColorSpace::HSV;
+  hue.min[0] = 170, hue.max[0] = 10;
+  EXPECT_THROW(scaledRange(hue, 2.0), std::invalid_argument);
 }
 
 }  // namespace

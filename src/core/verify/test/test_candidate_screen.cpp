@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -190,6 +191,82 @@ TEST(CandidateScreen, ColoursFileNamesTheVerifierAndMayTakeItsRangeFromIt) {
 }
 
 // The model the package ships loads without the data it was trained on, small, for the ball.
+// A verifier's model that only carries a floor guard scale (withFloorGuard reads nothing else).
+ClassVerifier verifierWithScale(const std::string& class_name, double scale) {
+  BlobVerifier model;
+  model.setFloorGuardScale(scale);
+  return {class_name, std::make_shared<const BlobVerifier>(std::move(model)), 0.5};
+}
+
+std::vector<std::string> namesOf(const std::vector<ColorClass>& classes) {
+  std::vector<std::string> names;
+  for (const ColorClass& c : classes) names.push_back(c.name);
+  return names;
+}
+
+// The tracker's table with the floor's guard: the fringe (a strip beyond the floor's range) is the
+// guard's, which yields no blob, and the ball at the strip's end is a blob of its own; without
+// the guard it is one blob with the strip, centred off the ball.
+TEST(FloorGuard, TheFloorsFringeIsTheGuardsAndTheBallAtItsEndABlobOfItsOwn) {
+  const test::FringeScene scene = test::fringeScene();
+  const ColorClass goal = blueRange();
+  const std::vector<ColorClass> classes = {scene.floor, goal, scene.permissive};
+  const std::vector<ColorClass> guarded = withFloorGuard(classes, {verifierWithScale("ball", 2.0)});
+  ASSERT_EQ(namesOf(guarded), (std::vector<std::string>{"field", "goal", "floor_guard", "ball"}));
+  const ColorClass& guard = guarded[2];
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(guard.min[c], scene.floor.min[c] - 15);  // half width 15 -> 30
+    EXPECT_EQ(guard.max[c], scene.floor.max[c] + 15);
+  }
+  EXPECT_TRUE(guard.verifier_file.empty());
+  // Again on its own output (a set coming back from active_color_ranges): the same.
+  EXPECT_EQ(namesOf(withFloorGuard(guarded, {verifierWithScale("ball", 2.0)})), namesOf(guarded));
+  // Scale 1, no field class, the field after the class, no room: no guard (and an old one goes).
+  EXPECT_EQ(namesOf(withFloorGuard(guarded, {verifierWithScale("ball", 1.0)})), namesOf(classes));
+  EXPECT_EQ(namesOf(withFloorGuard({goal, scene.permissive}, {verifierWithScale("ball", 2.0)})),
+            (std::vector<std::string>{"goal", "ball"}));
+  EXPECT_EQ(namesOf(withFloorGuard({scene.permissive, scene.floor}, {verifierWithScale("ball", 2.0)})),
+            (std::vector<std::string>{"ball", "field"}));
+  std::vector<ColorClass> full(kMaxColorClasses - 2, goal);
+  full.insert(full.begin(), scene.floor);
+  full.push_back(scene.permissive);
+  EXPECT_EQ(withFloorGuard(full, {verifierWithScale("ball", 2.0)}).size(), full.size());
+
+  // A lone image's floor colour: the field class's range, else a field class (no blob of its
+  // own) just before the class with a verifier; nothing without one.
+  ColorClass verified = scene.permissive;
+  verified.verifier_file = "ball.yml";
+  ColorClass configured_field = scene.floor;
+  configured_field.min = configured_field.max = Channels{{0, 0, 0}};
+  const std::vector<ColorClass> with_field = withFloorFirst({configured_field, goal, verified}, scene.floor);
+  EXPECT_EQ(namesOf(with_field), (std::vector<std::string>{"field", "goal", "ball"}));
+  EXPECT_EQ(with_field[0].min, scene.floor.min);
+  EXPECT_EQ(with_field[0].max, scene.floor.max);
+  const std::vector<ColorClass> inserted = withFloorFirst({goal, verified}, scene.floor);
+  ASSERT_EQ(namesOf(inserted), (std::vector<std::string>{"goal", "field", "ball"}));
+  EXPECT_EQ(inserted[1].min_area_px, std::numeric_limits<uint32_t>::max());
+  EXPECT_EQ(namesOf(withFloorFirst({goal, scene.permissive}, scene.floor)), (std::vector<std::string>{"goal", "ball"}));
+
+  cv::RNG rng(4);
+  for (int frame = 0; frame < 10; ++frame) {
+    const test::VerifierFrame f = test::drawFringeFrame(rng);
+    for (const bool with_guard : {true, false}) {
+      const ColorTable table(with_guard ? guarded : classes);
+      ColorTracker tracker;
+      std::vector<TrackedBlob> blobs;
+      tracker.process(f.bgr, PixelFormat::BGR8, table, frame, &blobs);
+      const int ball_label = with_guard ? 4 : 3;
+      int on_strip_ball = 0, of_guard = 0;
+      for (const TrackedBlob& b : blobs) {
+        on_strip_ball += b.region.label == ball_label && inside(b, f.balls[0]);
+        of_guard += with_guard && b.region.label == 3;
+      }
+      EXPECT_EQ(of_guard, 0) << "frame " << frame;
+      EXPECT_EQ(on_strip_ball, with_guard ? 1 : 0) << "frame " << frame << (with_guard ? " with" : " without") << " the guard";
+    }
+  }
+}
+
 TEST(CandidateScreen, ShippedBallVerifierLoads) {
   const std::string path = test::sourcePath("config/ball_verifier.yml.gz");
   const BlobVerifier shipped = BlobVerifier::load(path);
