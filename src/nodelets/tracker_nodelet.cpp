@@ -466,6 +466,7 @@ void TrackerNodelet::reportRegionLoad(diagnostic_updater::DiagnosticStatusWrappe
   status.add("regions (last frame)", report.regions);
   status.add("regions tracked (last frame)", report.tracked);
   for (const ClassLoad& load : report.overloaded) {
+    if (load.label - 1 < table->size() && !yieldsBlobs(table->classes()[load.label - 1])) continue;
     const std::string name =
         load.label - 1 < table->size() ? table->classes()[load.label - 1].name : "#" + std::to_string(load.label - 1);
     status.add("frames with too many regions for class " + name + " (since last report)", load.frames_overloaded);

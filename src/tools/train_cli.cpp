@@ -121,12 +121,11 @@ ColorClass candidateRange(const Arguments& a, const Groups& groups, size_t skip)
 // The candidates of the frames of `groups` (only group `only`, or all but `skip`), one set per
 // floor guard scale in `scales`: each frame read, and its floor found, once.
 std::vector<VerifierTrainingSet> candidates(const Arguments& a, const Groups& groups, const ColorClass& range,
-                                            const std::vector<double>& scales, size_t skip,
-                                            size_t only = static_cast<size_t>(-1)) {
+                                            const std::vector<double>& scales, size_t skip, size_t only = kNone) {
   std::vector<VerifierTrainingSet> sets;
   for (double scale : scales) sets.emplace_back(range, 20, scale);
   for (size_t g = 0; g < groups.size(); ++g) {
-    if (g == skip || (only != static_cast<size_t>(-1) && g != only)) continue;
+    if (g == skip || (only != kNone && g != only)) continue;
     for (VerifierTrainingSet& set : sets) set.setGroup(static_cast<int>(g));
     for (const std::string& path : groups[g]) {
       const cv::Mat bgr = cv::imread(path, cv::IMREAD_COLOR);

@@ -13,8 +13,8 @@ constexpr int kMaxColorClasses = 32;
 
 // The class the field stage's colour is published as (the floor's colour, learned).
 constexpr const char* kFieldClassName = "field";
-// The tracker's hidden class just before a class with a verifier: the floor's colour widened by
-// the verifier's floor margin (verify/candidate_screen.h, withFloorGuard). It yields no blob.
+// The tracker's hidden class just before a class with a verifier: the floor's colour grown by
+// the verifier's floor guard scale (verify/candidate_screen.h, withFloorGuard). No blob of it.
 constexpr const char* kFloorGuardClassName = "floor_guard";
 
 enum class ColorSpace : uint8_t {

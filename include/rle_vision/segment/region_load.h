@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -40,6 +41,11 @@ class RegionLoadMonitor {
   std::vector<ClassLoad> loads_;  // indexed by label
   RegionLoadReport last_frame_;
 };
+
+// A class whose regions never become blobs (a class that only takes pixels from the classes
+// after it, such as the floor's guard: its min_area_px is the largest there is) is not tracked,
+// so it is never reported as overloaded.
+inline bool yieldsBlobs(const ColorClass& c) { return c.min_area_px != std::numeric_limits<uint32_t>::max(); }
 
 // What to tell the user about a class with `regions` regions in one frame, over the limit.
 std::string overloadMessage(const std::string& class_name, uint32_t regions, const RegionLimits& limits);

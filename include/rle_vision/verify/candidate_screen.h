@@ -33,9 +33,9 @@ std::vector<ClassVerifier> loadClassVerifiers(const std::vector<ColorClass>& cla
 // them is dropped; then, when the field class comes before a class whose verifier keeps a floor
 // guard (BlobVerifier::floorGuardScale over 1), a floor_guard class (the field's range grown by
 // the largest such scale, scaledRange) goes just before the first such class, as the
-// verifier's candidates were made in training. The guard only takes pixels: no region of it is ever a blob. Without a
-// field class before them, with a wrapping field range or with no room left (kMaxColorClasses),
-// the classes come back without a guard.
+// verifier's candidates were made in training. The guard only takes pixels: no region of it is
+// ever a blob. Without a field class before them, with a wrapping field range or with no room
+// left (kMaxColorClasses), the classes come back without a guard.
 std::vector<ColorClass> withFloorGuard(std::vector<ColorClass> classes, const std::vector<ClassVerifier>& verifiers);
 
 // The classes with `floor` (the frame's floor colour, the field stage's) as the field class, as

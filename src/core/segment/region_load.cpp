@@ -46,6 +46,7 @@ std::string firstOverloadLog(const std::vector<int>& labels, const std::vector<u
   std::string text;
   for (int label : labels) {
     if (label < 1 || label > table.size() || static_cast<size_t>(label) >= regions.size()) continue;
+    if (!yieldsBlobs(table.classes()[label - 1])) continue;
     text += (text.empty() ? "" : "; ") + overloadMessage(table.classes()[label - 1].name, regions[label], limits);
   }
   if (text.empty()) return text;

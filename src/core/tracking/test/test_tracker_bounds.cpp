@@ -2,6 +2,7 @@
 // through a grid equal to scoring every pair, and the tracker on a very noisy frame.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -98,6 +99,13 @@ TEST(RegionLoadMonitor, ReportsOverloadedClassesPerWindowAndEachFirstTimeOnce) {
             "too many regions for class blue (1200 > max_regions_per_class 500): range too wide or image too noisy. "
             "Only the largest regions of at least min_track_area_px 20 px are tracked, up to that limit; further such "
             "frames are counted in diagnostics");
+  // A class that never yields a blob (the floor's guard) is not tracked: never reported.
+  ColorClass guard;
+  guard.name = "floor_guard";
+  guard.min_area_px = std::numeric_limits<uint32_t>::max();
+  EXPECT_FALSE(yieldsBlobs(guard));
+  EXPECT_TRUE(yieldsBlobs(red));
+  EXPECT_EQ(firstOverloadLog({1}, {0, 4000, 10}, ColorTable({guard, blue}), RegionLimits()), "");
 }
 
 // The reference: every (track, region) pair scored and sorted, the tracker's code from before
