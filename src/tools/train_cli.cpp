@@ -10,7 +10,6 @@
 // out in turn: a range, a floor guard scale and a verifier made from the others score its candidates.
 //
 //   rle_vision_train --class NAME --label-class N [--widen LEVELS] --output FILE FOLDER...
-#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -144,9 +143,7 @@ std::vector<VerifierTrainingSet> candidates(const Arguments& a, const Groups& gr
 size_t chosenScale(const std::vector<VerifierTrainingSet>& sets, const std::string& indent, std::string* note) {
   std::vector<double> f1;
   const double scale = chooseFloorGuardScale(sets, &f1);
-  std::vector<int> groups(sets[0].groups());
-  std::sort(groups.begin(), groups.end());
-  if (std::unique(groups.begin(), groups.end()) - groups.begin() < 2) {
+  if (distinctGroups(sets[0].groups()).size() < 2) {
     char line[160];
     std::snprintf(line, sizeof(line), "%sfloor guard scale %.1f: one folder, none held out to choose another", indent.c_str(), scale);
     std::printf("%s\n", line);

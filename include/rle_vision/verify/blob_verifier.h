@@ -27,6 +27,14 @@ struct VerifierTrainOptions {
   bool balance_classes = true;
 };
 
+// The distinct groups among `group` (one per candidate), in increasing order.
+std::vector<int> distinctGroups(const std::vector<int>& group);
+// The candidates of every group but `held`: their feature rows, labels and (`row_groups`, may
+// be null) groups. False when they do not hold both an object and a non-object, so that no
+// model can be trained on them.
+bool rowsWithoutGroup(const cv::Mat& features, const std::vector<int>& is_object, const std::vector<int>& group, int held,
+                      cv::Mat* rows, std::vector<int>* labels, std::vector<int>* row_groups = nullptr);
+
 class BlobVerifier {
  public:
   BlobVerifier();

@@ -73,27 +73,39 @@ BlobVerifier BlobVerifier::train(const cv::Mat& features, const std::vector<int>
   return verifier;
 }
 
+std::vector<int> distinctGroups(const std::vector<int>& group) {
+  std::vector<int> groups(group);
+  std::sort(groups.begin(), groups.end());
+  groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
+  return groups;
+}
+
+bool rowsWithoutGroup(const cv::Mat& features, const std::vector<int>& is_object, const std::vector<int>& group, int held,
+                      cv::Mat* rows, std::vector<int>* labels, std::vector<int>* row_groups) {
+  int positives = 0;
+  for (size_t i = 0; i < group.size(); ++i) {
+    if (group[i] == held) continue;
+    rows->push_back(features.row(static_cast<int>(i)));
+    labels->push_back(is_object[i]);
+    if (row_groups) row_groups->push_back(group[i]);
+    positives += is_object[i] != 0;
+  }
+  return positives > 0 && positives < static_cast<int>(labels->size());
+}
+
 BlobVerifier BlobVerifier::trainAcrossGroups(const cv::Mat& features, const std::vector<int>& is_object,
                                              const std::vector<int>& group, const VerifierTrainOptions& options) {
   if (group.size() != is_object.size() || features.rows != static_cast<int>(is_object.size())) {
     throw std::invalid_argument("verifier training: one feature row and one group per candidate label");
   }
-  std::vector<int> groups(group);
-  std::sort(groups.begin(), groups.end());
-  groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
+  const std::vector<int> groups = distinctGroups(group);
   BlobVerifier verifier;
   for (size_t g = 0; groups.size() >= 2 && g < groups.size(); ++g) {
     cv::Mat rows;
     std::vector<int> labels;
-    int positives = 0;
-    for (size_t i = 0; i < group.size(); ++i) {
-      if (group[i] == groups[g]) continue;
-      rows.push_back(features.row(static_cast<int>(i)));
-      labels.push_back(is_object[i]);
-      positives += is_object[i] != 0;
+    if (rowsWithoutGroup(features, is_object, group, groups[g], &rows, &labels)) {
+      verifier.addModel(trainModel(rows, labels, options));
     }
-    if (positives == 0 || positives == static_cast<int>(labels.size())) continue;
-    verifier.addModel(trainModel(rows, labels, options));
   }
   if (verifier.models_.empty()) return train(features, is_object, options);
   return verifier;

@@ -101,21 +101,12 @@ void VerifierTrainingSet::append(const VerifierTrainingSet& other) {
 
 std::vector<HeldOutCounts> crossValidateByGroup(const VerifierTrainingSet& set, float min_score,
                                                 const VerifierTrainOptions& options) {
-  std::vector<int> groups(set.groups());
-  std::sort(groups.begin(), groups.end());
-  groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
+  const std::vector<int> groups = distinctGroups(set.groups());
   std::vector<HeldOutCounts> counts;
   for (size_t g = 0; groups.size() >= 2 && g < groups.size(); ++g) {
     cv::Mat rows;
     std::vector<int> labels, row_groups;
-    for (int i = 0; i < set.features().rows; ++i) {
-      if (set.groups()[i] == groups[g]) continue;
-      rows.push_back(set.features().row(i));
-      labels.push_back(set.labels()[i]);
-      row_groups.push_back(set.groups()[i]);
-    }
-    const int positives = static_cast<int>(std::count(labels.begin(), labels.end(), 1));
-    if (positives == 0 || positives == static_cast<int>(labels.size())) continue;
+    if (!rowsWithoutGroup(set.features(), set.labels(), set.groups(), groups[g], &rows, &labels, &row_groups)) continue;
     const BlobVerifier verifier = BlobVerifier::trainAcrossGroups(rows, labels, row_groups, options);
     HeldOutCounts held;
     held.group = groups[g];
