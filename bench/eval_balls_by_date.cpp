@@ -7,7 +7,9 @@
 // cvtColor + inRange + connectedComponentsWithStats at the same range. Recall is counted over
 // every labelled ball and over the balls on the field side (ball_scoring.h).
 //
-//   rle_vision_eval_balls_by_date [--label-class N] [--json OUT] DIR
+//   rle_vision_eval_balls_by_date [--label-class N] [--non-field-penalty P] [--json OUT] DIR
+//
+// --non-field-penalty sets the field stage's field_non_field_penalty (default 1.0).
 //
 // DIR's folders are the dates; each holds images (or folders of them) with YOLO labels beside.
 #include <algorithm>
@@ -21,6 +23,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "ball_scoring.h"
+#include "field_options_arg.h"
 #include "harness.h"
 #include "rle_vision/io/yolo_labels.h"
 #include "rle_vision/learning/color_calibration.h"
@@ -43,16 +46,21 @@ const std::vector<std::pair<const char*, BallScore PairScore::*>> kMethods = {
 const char* const kMethodNames[] = {"ours, calibrated range (fixed)", "ours, on the field side only",
                                     "OpenCV cvtColor+inRange+connectedComponents"};
 
-// The frame's field boundary, found once per frame (each frame alone) and kept for every pair.
-const FieldResult& fieldOf(const std::string& path, const cv::Mat& bgr, std::map<std::string, FieldResult>* cache) {
-  auto found = cache->find(path);
-  if (found != cache->end()) return found->second;
-  FieldResult& field = (*cache)[path];
-  FieldDetector().detect(bgr, &field);
+// The frames' field boundaries, each found once (each frame alone) and kept for every pair.
+struct FieldCache {
+  FieldOptions options;
+  std::map<std::string, FieldResult> results;
+};
+
+const FieldResult& fieldOf(const std::string& path, const cv::Mat& bgr, FieldCache* cache) {
+  auto found = cache->results.find(path);
+  if (found != cache->results.end()) return found->second;
+  FieldResult& field = cache->results[path];
+  FieldDetector(cache->options).detect(bgr, &field);
   return field;
 }
 
-PairScore scoreDate(const Date& date, const ColorClass& ball, int label_class, std::map<std::string, FieldResult>* fields) {
+PairScore scoreDate(const Date& date, const ColorClass& ball, int label_class, FieldCache* fields) {
   PairScore s;
   bench::BallMethods methods(ball);
   for (const std::string& path : date.images) {
@@ -79,10 +87,10 @@ void addValues(const std::string& prefix, const PairScore& s, std::vector<std::p
 }
 
 // Every date calibrates; every other date is scored; the worst pair per method and figure.
-void run(const std::vector<Date>& dates, int label_class, const std::string& json) {
+void run(const std::vector<Date>& dates, int label_class, const FieldOptions& field_options, const std::string& json) {
   std::printf("%-20s %-44s %6s %7s %7s %6s %9s %8s\n", "calibrated->scored", "method", "balls", "recall",
               "field-r", "blobs", "precision", "ms/frame");
-  std::map<std::string, FieldResult> fields;
+  FieldCache fields{field_options, {}};
   std::vector<std::pair<std::string, double>> values;
   PairScore all;
   std::map<std::string, double> worst;
@@ -116,24 +124,30 @@ void run(const std::vector<Date>& dates, int label_class, const std::string& jso
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string root, json, label_class = "0";
+  std::string root, json, label_class = "0", problem;
+  FieldOptions field_options;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if ((arg == "--json" || arg == "--label-class") && i + 1 < argc) {
       (arg == "--json" ? json : label_class) = argv[++i];
+    } else if (arg == "--non-field-penalty" && i + 1 < argc) {
+      if (!bench::parseNonFieldPenalty(argv[++i], &field_options, &problem)) {
+        std::cerr << "rle_vision_eval_balls_by_date: " << problem << "\n";
+        return 2;
+      }
     } else {
       root = arg;
     }
   }
   const std::vector<Date> dates = bench::labelledDates(root);
   if (dates.size() < 2 || !bench::isWholeNumber(label_class, 6)) {
-    std::cerr << "usage: rle_vision_eval_balls_by_date [--label-class N] [--json OUT] DIR (its folders: two or more "
-                 "dates)\n";
+    std::cerr << "usage: rle_vision_eval_balls_by_date [--label-class N] [--non-field-penalty P] [--json OUT] DIR (its "
+                 "folders: two or more dates)\n";
     return 2;
   }
   bench::pinToOneCpu();
   try {
-    run(dates, std::stoi(label_class), json);
+    run(dates, std::stoi(label_class), field_options, json);
   } catch (const std::exception& e) {
     std::cerr << "rle_vision_eval_balls_by_date: " << e.what() << "\n";
     return 2;

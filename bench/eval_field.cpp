@@ -4,13 +4,14 @@
 // the grouping make eval reports its worst of). Each frame stands alone: the field colour is
 // seeded on it, nothing is tuned on these frames.
 //
-//   rle_vision_eval_field [--margin-px N] [--json OUT] [--sheet PNG [--sheet-class C]] DIR
+//   rle_vision_eval_field [--margin-px N] [--non-field-penalty P] [--json OUT] [--sheet PNG [--sheet-class C]] DIR
 //
 // --sheet draws every object of class C (default 1, the robots) that it puts off the field side
 // into one contact sheet, the boundary in magenta and the box in red, each tile numbered and
 // labelled with how far above the boundary the box's bottom is (px): whether those objects
 // stand on this field at all (another field, the hall floor beside the carpet, a ball in the air)
-// is for a person to see, since the labels do not say.
+// is for a person to see, since the labels do not say. --non-field-penalty sets the field stage's
+// field_non_field_penalty (default 1.0; docs/performance.md has a sweep).
 //
 // DIR's folders are the dates; each holds folders of images with YOLO label files beside them
 // (classes 0 ball, 1 obstacle, 2 human, as robocup_ml's obj.names).
@@ -26,6 +27,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "field_options_arg.h"
 #include "harness.h"
 #include "rle_vision/field/field_detector.h"
 #include "rle_vision/io/yolo_labels.h"
@@ -87,10 +89,10 @@ struct OffFieldSheet {
 };
 
 // One frame: the boundary, and each labelled object's bottom centre against it.
-void scoreFrame(const std::string& path, double margin_px, DateScore* s, OffFieldSheet* sheet) {
+void scoreFrame(const std::string& path, const FieldOptions& options, double margin_px, DateScore* s, OffFieldSheet* sheet) {
   const cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
   if (image.empty()) return;
-  FieldDetector detector;  // seeded on this frame alone
+  FieldDetector detector(options);  // seeded on this frame alone
   FieldResult field;
   detector.detect(image, &field);
   ++s->frames;
@@ -132,8 +134,8 @@ bool wholeArgumentNumber(const char* text, double* value) {
 
 int usage(const std::string& problem) {
   if (!problem.empty()) std::fprintf(stderr, "rle_vision_eval_field: %s\n", problem.c_str());
-  std::fprintf(stderr, "usage: rle_vision_eval_field [--margin-px N] [--json OUT] [--sheet PNG [--sheet-class C]] DIR "
-                       "(its folders: the dates)\n");
+  std::fprintf(stderr, "usage: rle_vision_eval_field [--margin-px N] [--non-field-penalty P] [--json OUT] "
+                       "[--sheet PNG [--sheet-class C]] DIR (its folders: the dates)\n");
   return 2;
 }
 
@@ -143,13 +145,16 @@ int main(int argc, char** argv) {
   std::string json, sheet_png;
   OffFieldSheet sheet;
   double margin_px = 8;
-  std::string root;
+  FieldOptions options;
+  std::string root, problem;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--json" && i + 1 < argc) {
       json = argv[++i];
     } else if (arg == "--margin-px" && i + 1 < argc) {
       if (!wholeArgumentNumber(argv[++i], &margin_px) || margin_px < 0) return usage("--margin-px needs a number >= 0");
+    } else if (arg == "--non-field-penalty" && i + 1 < argc) {
+      if (!bench::parseNonFieldPenalty(argv[++i], &options, &problem)) return usage(problem);
     } else if (arg == "--sheet" && i + 1 < argc) {
       sheet_png = argv[++i];
     } else if (arg == "--sheet-class" && i + 1 < argc) {
@@ -170,8 +175,8 @@ int main(int argc, char** argv) {
   if (dates.empty()) return usage("");
   bench::pinToOneCpu();
   std::printf("rle_vision eval (field boundary): each frame alone (field colour seeded on it); an object is on the "
-              "field side when its box's bottom centre is at most %.0f px above the boundary\n",
-              margin_px);
+              "field side when its box's bottom centre is at most %.0f px above the boundary (non-field penalty %g)\n",
+              margin_px, options.boundary.non_field_penalty);
   std::printf("%-22s %6s %7s %7s   %-14s   %-14s   %-14s\n", "date", "frames", "found%", "ms", "balls on field",
               "robots on field", "humans on field");
   std::vector<std::pair<std::string, double>> values;
@@ -179,7 +184,7 @@ int main(int argc, char** argv) {
   double worst_robots = 100;
   for (const std::string& dir : dates) {
     DateScore s;
-    for (const std::string& path : imagesUnderFolder(dir)) scoreFrame(path, margin_px, &s, sheet_png.empty() ? nullptr : &sheet);
+    for (const std::string& path : imagesUnderFolder(dir)) scoreFrame(path, options, margin_px, &s, sheet_png.empty() ? nullptr : &sheet);
     const std::string name = std::filesystem::path(dir).filename().string();
     printRow(name, s);
     addValues("dates." + name, s, &values);
