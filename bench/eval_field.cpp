@@ -125,13 +125,6 @@ void addValues(const std::string& key, const DateScore& s, std::vector<std::pair
   }
 }
 
-// True when the whole of `text` is one finite number.
-bool wholeArgumentNumber(const char* text, double* value) {
-  char* end = nullptr;
-  *value = std::strtod(text, &end);
-  return end != text && *end == '\0' && std::isfinite(*value);
-}
-
 int usage(const std::string& problem) {
   if (!problem.empty()) std::fprintf(stderr, "rle_vision_eval_field: %s\n", problem.c_str());
   std::fprintf(stderr, "usage: rle_vision_eval_field [--margin-px N] [--non-field-penalty P] [--json OUT] "
@@ -152,7 +145,7 @@ int main(int argc, char** argv) {
     if (arg == "--json" && i + 1 < argc) {
       json = argv[++i];
     } else if (arg == "--margin-px" && i + 1 < argc) {
-      if (!wholeArgumentNumber(argv[++i], &margin_px) || margin_px < 0) return usage("--margin-px needs a number >= 0");
+      if (!bench::isFiniteNumber(argv[++i], &margin_px) || margin_px < 0) return usage("--margin-px needs a number >= 0");
     } else if (arg == "--non-field-penalty" && i + 1 < argc) {
       if (!bench::parseNonFieldPenalty(argv[++i], &options, &problem)) return usage(problem);
     } else if (arg == "--sheet" && i + 1 < argc) {

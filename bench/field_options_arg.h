@@ -3,10 +3,9 @@
 // measured for other values (docs/performance.md) with the tools CI runs.
 #pragma once
 
-#include <cmath>
-#include <cstdlib>
 #include <string>
 
+#include "harness.h"
 #include "rle_vision/field/field_detector.h"
 
 namespace rle_vision {
@@ -15,9 +14,8 @@ namespace bench {
 // Sets options->boundary.non_field_penalty from `text`; false (and `problem` says why) when it
 // is not one finite number within the parameter's range.
 inline bool parseNonFieldPenalty(const char* text, FieldOptions* options, std::string* problem) {
-  char* end = nullptr;
-  const double value = std::strtod(text, &end);
-  if (end == text || *end != '\0' || !std::isfinite(value)) {
+  double value = 0;
+  if (!isFiniteNumber(text, &value)) {
     *problem = std::string("--non-field-penalty needs a number, not '") + text + "'";
     return false;
   }

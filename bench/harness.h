@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <ctime>
 #include <cstdio>
 #include <fstream>
@@ -63,6 +65,13 @@ inline void keep(const T& value) {
 // True when a command-line value is a whole number of 1 to max_digits digits (a label class).
 inline bool isWholeNumber(const std::string& text, size_t max_digits) {
   return !text.empty() && text.size() <= max_digits && text.find_first_not_of("0123456789") == std::string::npos;
+}
+
+// True when the whole of a command-line value is one finite number (into `value`).
+inline bool isFiniteNumber(const char* text, double* value) {
+  char* end = nullptr;
+  *value = std::strtod(text, &end);
+  return end != text && *end == '\0' && std::isfinite(*value);
 }
 
 // Pins the process to one CPU so one-thread figures are one-core figures.
