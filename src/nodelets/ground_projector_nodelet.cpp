@@ -398,7 +398,9 @@ void GroundProjectorNodelet::placePendingBlobs() {
     if (lookup != AttitudeTimeline::Lookup::kFound) {
       stats_.addDrop();
       NODELET_WARN_THROTTLE(5.0, "dropping blobs of %.3f: no camera attitude from the horizon at that time (the "
-                            "horizon must be found: is the landmark node running and the horizon in view?)",
+                            "horizon must be found: is the landmark node running and the horizon in view? Or the "
+                            "horizons around it are more than attitude_max_gap_s apart: the landmark node is "
+                            "falling behind on a loaded CPU)",
                             msg->header.stamp.toSec());
       continue;
     }

@@ -9,8 +9,9 @@ namespace rle_vision {
 
 // smoothing (0: every horizon taken as it is; towards 1: smoother, slower), min_confidence,
 // max_jump_deg (a horizon this far from the prediction is a glitch, ignored unless
-// max_rejected come in a row: then the filter restarts), max_hold_s: the ATTITUDE_FILTER group
-// of ground_params.def, with their defaults and meanings.
+// max_rejected come in a row: then the filter restarts), max_hold_s, max_gap_s (the longest gap
+// between horizons an image's attitude is interpolated across): the ATTITUDE_FILTER group of
+// ground_params.def, with their defaults and meanings.
 struct AttitudeFilterOptions {
 #define RLE_ATTITUDE_FILTER_PARAM(key, member, type, default_value, min, max, description) type member = default_value;
 #include "rle_vision/params/ground_params.def"
@@ -70,8 +71,8 @@ class AttitudeTimeline {
   Update addHorizon(bool found, double roll, double pitch, double confidence, double stamp_s);
 
   enum class Lookup { kFound, kNotYet, kLost };
-  // The attitude at an image stamp: kFound (in *roll, *pitch) between or at recorded horizons
-  // no more than max_hold_s apart; kNotYet after the newest one (a later horizon will cover
+  // The attitude at an image stamp: kFound (in *roll, *pitch) at a recorded horizon or between
+  // two no more than max_gap_s apart; kNotYet after the newest one (a later horizon will cover
   // it, and one more for the rate at its end); kLost before the oldest kept one or inside a
   // longer gap.
   Lookup attitudeAt(double stamp_s, double* roll, double* pitch) const;

@@ -18,6 +18,7 @@ std::string validateAttitudeFilterOptions(const AttitudeFilterOptions& o) {
   if (!std::isfinite(o.max_jump_deg) || o.max_jump_deg <= 0) return "max_jump_deg must be positive";
   if (o.max_rejected < 1) return "max_rejected must be at least 1";
   if (!std::isfinite(o.max_hold_s) || o.max_hold_s <= 0) return "max_hold_s must be positive";
+  if (!std::isfinite(o.max_gap_s) || o.max_gap_s <= 0) return "max_gap_s must be positive";
   return "";
 }
 
@@ -115,7 +116,7 @@ double AttitudeTimeline::rate(size_t k, double State::*angle, double State::*fil
   if (k == 0 || k + 1 >= states_.size()) return states_[k].*filter_rate;
   const State &a = states_[k - 1], &b = states_[k], &c = states_[k + 1];
   const double h0 = b.stamp_s - a.stamp_s, h1 = c.stamp_s - b.stamp_s;
-  if (h0 > options_.max_hold_s || h1 > options_.max_hold_s) return b.*filter_rate;
+  if (h0 > options_.max_gap_s || h1 > options_.max_gap_s) return b.*filter_rate;
   return (h0 * h0 * (c.*angle - b.*angle) + h1 * h1 * (b.*angle - a.*angle)) / (h0 * h1 * (h0 + h1));
 }
 
@@ -132,7 +133,7 @@ AttitudeTimeline::Lookup AttitudeTimeline::attitudeAt(double stamp_s, double* ro
   const size_t k = static_cast<size_t>(after - states_.begin()) - 1;
   const State& a = states_[k];
   const State& b = states_[k + 1];
-  if (b.stamp_s - a.stamp_s > options_.max_hold_s) return Lookup::kLost;
+  if (b.stamp_s - a.stamp_s > options_.max_gap_s) return Lookup::kLost;
   if (k + 2 >= states_.size()) return Lookup::kNotYet;  // the rate at b needs the state after it
   *roll = hermite(stamp_s, a.stamp_s, a.roll, rate(k, &State::roll, &State::roll_rate), b.stamp_s, b.roll,
                   rate(k + 1, &State::roll, &State::roll_rate));

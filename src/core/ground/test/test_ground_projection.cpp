@@ -392,6 +392,46 @@ TEST(AttitudeTimeline, FollowsTheGaitAcrossSkippedHorizons) {
               worst / kDeg, worst_linear / kDeg);
 }
 
+// Horizons every `gap_s` through the same gait: the worst error of the attitude interpolated
+// between them (rad), or -1 when no image between them gets one.
+double worstErrorBetweenHorizons(double gap_s, const AttitudeFilterOptions& options) {
+  AttitudeTimeline timeline(options);
+  auto roll_at = [](double t) { return 3 * kDeg * std::sin(2 * M_PI * t); };
+  auto pitch_at = [](double t) { return 20 * kDeg + 2 * kDeg * std::sin(4 * M_PI * t); };
+  for (int i = 0; i < 30; ++i) timeline.addHorizon(true, roll_at(i / 30.0), pitch_at(i / 30.0), 0.9, i / 30.0);
+  for (double t = 1.0; t <= 2.5 + gap_s; t += gap_s) timeline.addHorizon(true, roll_at(t), pitch_at(t), 0.9, t);
+  double worst = -1;
+  for (double t = 1.0 + 2 * gap_s + 1.0 / 60; t < 2.5; t += 1.0 / 30) {  // between frames, not at a horizon
+    double roll = 0, pitch = 0;
+    if (timeline.attitudeAt(t, &roll, &pitch) != AttitudeTimeline::Lookup::kFound) continue;
+    worst = std::max({worst, std::abs(roll - roll_at(t)), std::abs(pitch - pitch_at(t))});
+  }
+  return worst;
+}
+
+// A loaded machine's landmark node sends horizons far apart: across a larger share of the sway
+// the interpolated attitude is wrong by degrees (an obstacle at 2 m by tens of percent), so
+// images in gaps longer than max_gap_s get none.
+TEST(AttitudeTimeline, NoAttitudeAcrossGapsLongerThanMaxGap) {
+  AttitudeFilterOptions options;  // max_gap_s 0.15 by default
+  options.smoothing = 0.0;
+  for (double gap_s : {0.1, 0.15, 0.2, 0.3, 0.5}) {
+    AttitudeFilterOptions wide = options;
+    wide.max_gap_s = 1.0;
+    std::printf("[ attitude timeline ] horizons %.2f s apart in the gait: worst error between them %.2f deg\n", gap_s,
+                worstErrorBetweenHorizons(gap_s, wide) / kDeg);
+  }
+  EXPECT_LT(worstErrorBetweenHorizons(0.1, options), 0.15 * kDeg);
+  const double at_max_gap = worstErrorBetweenHorizons(0.149, options);
+  EXPECT_GE(at_max_gap, 0.0);
+  EXPECT_LT(at_max_gap, 0.5 * kDeg);
+  EXPECT_EQ(worstErrorBetweenHorizons(0.2, options), -1.0);  // every image in a gap: none
+  options.max_gap_s = 0.5;
+  EXPECT_GT(worstErrorBetweenHorizons(0.45, options), 1.0 * kDeg);  // what a longer gap costs
+  options.max_gap_s = NAN;
+  EXPECT_NE(validateAttitudeFilterOptions(options), "");
+}
+
 TEST(AttitudeTimeline, LongGapsAndTimeGoingBackwards) {
   AttitudeFilterOptions options;
   options.max_hold_s = 0.5;
