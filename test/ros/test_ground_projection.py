@@ -117,6 +117,9 @@ class GroundProjectionTest(unittest.TestCase):
         errors, between_errors, clipped_checked = [], [], 0
         for truth, blobs, obstacles in frames:
             self.assertEqual(obstacles.header.frame_id, 'base_link')
+            stamp = obstacles.header.stamp
+            # From the horizon, base_frame faces where the camera faces (yaw is not observable).
+            heading = truth.camera_yaw if expect_horizon else 0.0
             blob_by_id = {b.id: b for b in blobs.blobs}
             for o in obstacles.obstacles:
                 blob = blob_by_id[o.blob_id]  # every obstacle comes from a blob of the same image
@@ -132,9 +135,6 @@ class GroundProjectionTest(unittest.TestCase):
                 box = (blob.left, blob.top, blob.right, blob.bottom)
                 for obj in clear_objects(truth, min_area=200):
                     if obj.color == blob.color and iou(box, (obj.left, obj.top, obj.right, obj.bottom)) >= 0.5:
-                        stamp = obstacles.header.stamp
-                        # From the horizon, base_frame faces where the camera faces (yaw is not observable).
-                        heading = truth.camera_yaw if expect_horizon else 0.0
                         ratio = distance_to_footprint_edge(obj, o.position.x, o.position.y, heading) / o.range_m
                         if stamp not in own_horizon:
                             between_errors.append((ratio, obj.name, o.range_m))

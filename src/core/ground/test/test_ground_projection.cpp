@@ -303,6 +303,10 @@ TEST(GroundProjection, BoxesLandOnTheirFootprintsWithThePoseFromTheHorizon) {
   EXPECT_LT(worst, 0.05);
 }
 
+// The camera's sway in the attitude tests' gait: roll 3 deg at 1 Hz, pitch 20 deg +- 2 deg at 2 Hz.
+double gaitRoll(double t) { return 3 * kDeg * std::sin(2 * M_PI * t); }
+double gaitPitch(double t) { return 20 * kDeg + 2 * kDeg * std::sin(4 * M_PI * t); }
+
 TEST(AttitudeFilter, FollowsAGaitWithoutLagAndIgnoresGlitches) {
   AttitudeFilterOptions options;
   options.smoothing = 0.1;
@@ -313,7 +317,7 @@ TEST(AttitudeFilter, FollowsAGaitWithoutLagAndIgnoresGlitches) {
   int glitches_rejected = 0;
   for (int i = 0; i < 300; ++i) {
     const double t = i / 30.0;
-    const double roll = 3 * kDeg * std::sin(2 * M_PI * t), pitch = 20 * kDeg + 2 * kDeg * std::sin(4 * M_PI * t);
+    const double roll = gaitRoll(t), pitch = gaitPitch(t);
     if (i % 37 == 20) {  // a wrong horizon (e.g. a box's top edge), 15 deg off
       glitches_rejected += filter.update(true, roll + 15 * kDeg, pitch, 0.9, t) == AttitudeFilter::Outcome::kJump;
       continue;
@@ -363,14 +367,12 @@ TEST(AttitudeFilter, GatesHoldsAndRestarts) {
 // timeline follows it, where a linear interpolation of the same horizons is off by 0.4 deg.
 TEST(AttitudeTimeline, FollowsTheGaitAcrossSkippedHorizons) {
   AttitudeTimeline timeline;
-  auto roll_at = [](double t) { return 3 * kDeg * std::sin(2 * M_PI * t); };
-  auto pitch_at = [](double t) { return 20 * kDeg + 2 * kDeg * std::sin(4 * M_PI * t); };
   // Horizons at 30 Hz for 2 s, then two frames of every three skipped.
   std::vector<double> horizon_stamps;
   for (int i = 0; i < 60; ++i) horizon_stamps.push_back(i / 30.0);
   for (int i = 60; i <= 123; i += 3) horizon_stamps.push_back(i / 30.0);
   for (double t : horizon_stamps) {
-    ASSERT_TRUE(timeline.addHorizon(true, roll_at(t), pitch_at(t), 0.9, t).valid);
+    ASSERT_TRUE(timeline.addHorizon(true, gaitRoll(t), gaitPitch(t), 0.9, t).valid);
   }
   double worst = 0, worst_linear = 0;
   for (int i = 61; i < 120; ++i) {
@@ -378,9 +380,9 @@ TEST(AttitudeTimeline, FollowsTheGaitAcrossSkippedHorizons) {
     const double t = i / 30.0;
     double roll = 0, pitch = 0;
     ASSERT_EQ(timeline.attitudeAt(t, &roll, &pitch), AttitudeTimeline::Lookup::kFound);
-    worst = std::max({worst, std::abs(roll - roll_at(t)), std::abs(pitch - pitch_at(t))});
+    worst = std::max({worst, std::abs(roll - gaitRoll(t)), std::abs(pitch - gaitPitch(t))});
     const double t0 = (i / 3) * 3 / 30.0, t1 = t0 + 0.1, f = (t - t0) / 0.1;
-    worst_linear = std::max(worst_linear, std::abs(pitch_at(t0) + f * (pitch_at(t1) - pitch_at(t0)) - pitch_at(t)));
+    worst_linear = std::max(worst_linear, std::abs(gaitPitch(t0) + f * (gaitPitch(t1) - gaitPitch(t0)) - gaitPitch(t)));
   }
   EXPECT_LT(worst, 0.15 * kDeg);
   EXPECT_GT(worst_linear, 0.3 * kDeg);
@@ -396,15 +398,13 @@ TEST(AttitudeTimeline, FollowsTheGaitAcrossSkippedHorizons) {
 // between them (rad), or -1 when no image between them gets one.
 double worstErrorBetweenHorizons(double gap_s, const AttitudeFilterOptions& options) {
   AttitudeTimeline timeline(options);
-  auto roll_at = [](double t) { return 3 * kDeg * std::sin(2 * M_PI * t); };
-  auto pitch_at = [](double t) { return 20 * kDeg + 2 * kDeg * std::sin(4 * M_PI * t); };
-  for (int i = 0; i < 30; ++i) timeline.addHorizon(true, roll_at(i / 30.0), pitch_at(i / 30.0), 0.9, i / 30.0);
-  for (double t = 1.0; t <= 2.5 + gap_s; t += gap_s) timeline.addHorizon(true, roll_at(t), pitch_at(t), 0.9, t);
+  for (int i = 0; i < 30; ++i) timeline.addHorizon(true, gaitRoll(i / 30.0), gaitPitch(i / 30.0), 0.9, i / 30.0);
+  for (double t = 1.0; t <= 2.5 + gap_s; t += gap_s) timeline.addHorizon(true, gaitRoll(t), gaitPitch(t), 0.9, t);
   double worst = -1;
   for (double t = 1.0 + 2 * gap_s + 1.0 / 60; t < 2.5; t += 1.0 / 30) {  // between frames, not at a horizon
     double roll = 0, pitch = 0;
     if (timeline.attitudeAt(t, &roll, &pitch) != AttitudeTimeline::Lookup::kFound) continue;
-    worst = std::max({worst, std::abs(roll - roll_at(t)), std::abs(pitch - pitch_at(t))});
+    worst = std::max({worst, std::abs(roll - gaitRoll(t)), std::abs(pitch - gaitPitch(t))});
   }
   return worst;
 }
