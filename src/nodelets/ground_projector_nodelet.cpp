@@ -290,7 +290,9 @@ void GroundProjectorNodelet::horizonCb(const HorizonConstPtr& msg) {
     return;
   }
   if (use_horizon_) {
-    broadcastPose(msg->header, update.attitude.roll, update.attitude.pitch);
+    // tf carries the attitudes of accepted horizons only, as the obstacles use them (a rejected
+    // horizon's extrapolated one is in the attitude topics, with confidence 0).
+    if (update.recorded) broadcastPose(msg->header, update.attitude.roll, update.attitude.pitch);
     placePendingBlobs();
   }
   publishAttitude(msg->header, update.attitude);

@@ -106,10 +106,10 @@ class GroundProjectionTest(unittest.TestCase):
 
         # With the horizon as the source, a frame the low-priority landmark skipped (a loaded or
         # slow machine skips more) gets an attitude interpolated between the horizons around it,
-        # while the camera sways with the gait, and a frame whose horizon the filter did not accept
-        # (a glitch, or below horizon_min_confidence) one carried on from the last accepted horizon:
-        # those frames are held to ~max_between_error_ratio. The attitude's variance tells them
-        # apart (attitude_stddev_deg^2 / confidence, confidence 0 when not accepted).
+        # while the camera sways with the gait, and so does a frame whose horizon the filter did not
+        # accept (a glitch, or below horizon_min_confidence): those frames are held to
+        # ~max_between_error_ratio. The attitude's variance tells them apart
+        # (attitude_stddev_deg^2 / confidence, confidence 0 when not accepted).
         with self.lock:
             attitude_by_stamp = dict(self.attitude)
             own_horizon = (self.accepted_horizon_stamps() & set(attitude_by_stamp)) if expect_horizon else set(self.obstacles)

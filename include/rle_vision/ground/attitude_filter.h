@@ -47,11 +47,11 @@ class AttitudeFilter {
 };
 
 // The camera attitude over time, from horizons (the GroundProjector's horizon mode): the
-// filter above, and its state at each horizon of the last seconds, so that an image between
-// two horizons (the low-priority landmark node skips frames under load) gets its attitude by
-// cubic Hermite interpolation, with the angles' rates from the states on both sides of the
-// gap: it follows the gait's sway across the gap, where a linear interpolation (tf's) cuts the
-// corners.
+// filter above, and its state at each accepted horizon of the last seconds, so that an image
+// between two of them (the low-priority landmark node skips frames under load, or a horizon
+// was rejected) gets its attitude by cubic Hermite interpolation, with the angles' rates from
+// the states on both sides of the gap: it follows the gait's sway across the gap, where a
+// linear interpolation (tf's) cuts the corners.
 class AttitudeTimeline {
  public:
   explicit AttitudeTimeline(const AttitudeFilterOptions& options = AttitudeFilterOptions());
@@ -65,6 +65,7 @@ class AttitudeTimeline {
     AttitudeFilter::Outcome outcome = AttitudeFilter::Outcome::kNoHorizon;
     bool restarted = false;  // time went backwards (a looped bag): everything was forgotten
     bool valid = false;      // an attitude exists at the horizon's stamp (then in `attitude`)
+    bool recorded = false;   // ... from this horizon, accepted: images near it are placed by it
     Attitude attitude;
   };
   // One horizon message (roll and pitch as the landmark node computes them).

@@ -97,16 +97,24 @@ AttitudeTimeline::Update AttitudeTimeline::addHorizon(bool found, double roll, d
   }
   update.outcome = filter_.update(found, roll, pitch, confidence, stamp_s);
   if (!filter_.valid(stamp_s) || (!states_.empty() && stamp_s <= states_.back().stamp_s)) return update;
-  // Between accepted horizons the attitude moves on at the filter's rate.
+  // After a rejected horizon the attitude is the last accepted one moved on at the filter's
+  // rate (reported, with confidence 0), but not recorded: an extrapolation across the gait's
+  // sway is off by far more than the interpolation between the accepted horizons on both sides
+  // (gtest AttitudeTimeline.RejectedHorizonsAreBridgedNotExtrapolated), so images there wait
+  // for the next accepted horizon, within max_gap_s of the last.
   const double dt = stamp_s - filter_.lastStamp();
   const State state{stamp_s, filter_.roll() + filter_.rollRate() * dt, filter_.pitch() + filter_.pitchRate() * dt,
                     filter_.rollRate(), filter_.pitchRate()};
-  states_.push_back(state);
-  while (states_.front().stamp_s < stamp_s - kKeepS) states_.pop_front();
+  const bool accepted = update.outcome == AttitudeFilter::Outcome::kAccepted;
+  if (accepted) {
+    states_.push_back(state);
+    while (states_.front().stamp_s < stamp_s - kKeepS) states_.pop_front();
+  }
   update.valid = true;
+  update.recorded = accepted;
   update.attitude.roll = state.roll;
   update.attitude.pitch = state.pitch;
-  update.attitude.confidence = update.outcome == AttitudeFilter::Outcome::kAccepted ? confidence : 0.0;
+  update.attitude.confidence = accepted ? confidence : 0.0;
   return update;
 }
 

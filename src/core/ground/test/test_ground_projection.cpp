@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 
 #include <opencv2/calib3d.hpp>
@@ -418,6 +419,7 @@ TEST(AttitudeTimeline, NoAttitudeAcrossGapsLongerThanMaxGap) {
   for (double gap_s : {0.1, 0.15, 0.2, 0.3, 0.5}) {
     AttitudeFilterOptions wide = options;
     wide.max_gap_s = 1.0;
+    wide.max_jump_deg = 90;  // far apart, the horizons stray from the filter's prediction: all taken
     std::printf("[ attitude timeline ] horizons %.2f s apart in the gait: worst error between them %.2f deg\n", gap_s,
                 worstErrorBetweenHorizons(gap_s, wide) / kDeg);
   }
@@ -427,9 +429,61 @@ TEST(AttitudeTimeline, NoAttitudeAcrossGapsLongerThanMaxGap) {
   EXPECT_LT(at_max_gap, 0.5 * kDeg);
   EXPECT_EQ(worstErrorBetweenHorizons(0.2, options), -1.0);  // every image in a gap: none
   options.max_gap_s = 0.5;
+  options.max_jump_deg = 90;
   EXPECT_GT(worstErrorBetweenHorizons(0.45, options), 1.0 * kDeg);  // what a longer gap costs
   options.max_gap_s = NAN;
   EXPECT_NE(validateAttitudeFilterOptions(options), "");
+}
+
+// Runs of rejected horizons (below horizon_min_confidence: a box's top edge, a frame with no sky)
+// in the gait at 30 Hz: the images there get the attitude interpolated between the accepted
+// horizons on both sides, not the filter's extrapolation past the last one (what a rejected
+// horizon reports, with confidence 0), which is off by far more; inside a run spanning more than
+// max_gap_s they get none.
+TEST(AttitudeTimeline, RejectedHorizonsAreBridgedNotExtrapolated) {
+  AttitudeFilterOptions options;  // horizon_min_confidence 0.5, max_gap_s 0.15
+  options.smoothing = 0.0;
+  AttitudeTimeline timeline(options);
+  std::map<int, double> worst_extrapolated, worst_bridged;  // by run length (rad)
+  int i = 0;
+  for (; i < 30; ++i) ASSERT_TRUE(timeline.addHorizon(true, gaitRoll(i / 30.0), gaitPitch(i / 30.0), 0.9, i / 30.0).recorded);
+  for (int cycle = 0; cycle < 3; ++cycle) {
+    for (int run : {1, 2, 3, 4, 6}) {
+      std::vector<double> stamps;
+      for (int k = 0; k < run; ++k, ++i) {
+        const double t = i / 30.0;
+        const AttitudeTimeline::Update update = timeline.addHorizon(true, gaitRoll(t), gaitPitch(t), 0.1, t);
+        ASSERT_TRUE(update.valid);
+        ASSERT_FALSE(update.recorded);
+        EXPECT_EQ(update.attitude.confidence, 0.0);
+        const double error = std::max(std::abs(update.attitude.roll - gaitRoll(t)), std::abs(update.attitude.pitch - gaitPitch(t)));
+        worst_extrapolated[run] = std::max(worst_extrapolated[run], error);
+        stamps.push_back(t);
+      }
+      for (int k = 0; k < 4; ++k, ++i) timeline.addHorizon(true, gaitRoll(i / 30.0), gaitPitch(i / 30.0), 0.9, i / 30.0);
+      for (double t : stamps) {  // the run's images, once the accepted horizons after it came
+        double roll = 0, pitch = 0;
+        const AttitudeTimeline::Lookup lookup = timeline.attitudeAt(t, &roll, &pitch);
+        if ((run + 1) / 30.0 > options.max_gap_s) {
+          EXPECT_EQ(lookup, AttitudeTimeline::Lookup::kLost) << "t " << t;
+          continue;
+        }
+        ASSERT_EQ(lookup, AttitudeTimeline::Lookup::kFound) << "t " << t;
+        worst_bridged[run] = std::max({worst_bridged[run], std::abs(roll - gaitRoll(t)), std::abs(pitch - gaitPitch(t))});
+      }
+    }
+  }
+  for (const auto& [run, extrapolated] : worst_extrapolated) {
+    const auto bridged = worst_bridged.find(run);
+    std::printf("[ attitude timeline ] %d rejected horizons in a row: worst error extrapolated %.2f deg, bridged %.2f deg%s\n",
+                run, extrapolated / kDeg, bridged == worst_bridged.end() ? 0.0 : bridged->second / kDeg,
+                bridged == worst_bridged.end() ? " (none: a gap over max_gap_s)" : "");
+  }
+  for (const auto& [run, bridged] : worst_bridged) {
+    EXPECT_LT(bridged, 0.5 * kDeg) << run;
+    EXPECT_LT(bridged, 0.5 * worst_extrapolated[run]) << run;
+  }
+  EXPECT_EQ(worst_bridged.size(), 3u);  // runs of 1, 2 and 3 frames: within max_gap_s
 }
 
 TEST(AttitudeTimeline, LongGapsAndTimeGoingBackwards) {
@@ -443,10 +497,13 @@ TEST(AttitudeTimeline, LongGapsAndTimeGoingBackwards) {
   EXPECT_EQ(timeline.attitudeAt(1.5, &roll, &pitch), AttitudeTimeline::Lookup::kLost);  // no attitude inside the gap
   EXPECT_EQ(timeline.attitudeAt(2.0, &roll, &pitch), AttitudeTimeline::Lookup::kFound);
   EXPECT_DOUBLE_EQ(roll, 0.1);
-  // A rejected horizon still records the attitude moved on by the filter, with confidence 0.
+  // A rejected horizon still reports the attitude moved on by the filter, with confidence 0,
+  // but does not record it for the images.
   const AttitudeTimeline::Update low = timeline.addHorizon(true, 0.1, 0.3, 0.1, 2.1);
   EXPECT_TRUE(low.valid);
+  EXPECT_FALSE(low.recorded);
   EXPECT_EQ(low.attitude.confidence, 0.0);
+  EXPECT_EQ(timeline.attitudeAt(2.1, &roll, &pitch), AttitudeTimeline::Lookup::kNotYet);
   // A looped bag: time goes back, everything starts over.
   const AttitudeTimeline::Update looped = timeline.addHorizon(true, -0.2, 0.1, 0.9, 0.5);
   EXPECT_TRUE(looped.restarted);
