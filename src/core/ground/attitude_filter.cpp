@@ -37,8 +37,11 @@ AttitudeFilter::Outcome AttitudeFilter::update(bool found, double roll, double p
     const double roll_predicted = roll_ + roll_rate_ * dt, pitch_predicted = pitch_ + pitch_rate_ * dt;
     const double roll_residual = roll - roll_predicted, pitch_residual = pitch - pitch_predicted;
     const double max_jump = options_.max_jump_deg * M_PI / 180;
-    if ((std::abs(roll_residual) > max_jump || std::abs(pitch_residual) > max_jump) &&
-        ++rejected_in_a_row_ < options_.max_rejected) {
+    // The gate: against the prediction, but across a gap over max_gap_s (the gait turns within
+    // it: the rate carried that far overshoots) against the last attitude itself.
+    const bool rate_holds = dt <= options_.max_gap_s;
+    const double roll_off = rate_holds ? roll_residual : roll - roll_, pitch_off = rate_holds ? pitch_residual : pitch - pitch_;
+    if ((std::abs(roll_off) > max_jump || std::abs(pitch_off) > max_jump) && ++rejected_in_a_row_ < options_.max_rejected) {
       return Outcome::kJump;
     }
     if (rejected_in_a_row_ >= options_.max_rejected) {  // the glitch persists: it is the truth now

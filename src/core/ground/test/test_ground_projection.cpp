@@ -364,6 +364,33 @@ TEST(AttitudeFilter, GatesHoldsAndRestarts) {
   EXPECT_NE(validateAttitudeFilterOptions(options), "");
 }
 
+// A starved landmark node sends horizons far apart: over such a gap the filter's rate says
+// little (the gait turns within it), so its gate holds each horizon against the last accepted
+// attitude, not against the rate carried across the gap; before, horizons 0.3 s apart in the gait
+// were taken for glitches (the rate carried over 0.3 s overshoots by more than max_jump_deg).
+// A glitch is still one, however long the gap.
+TEST(AttitudeFilter, HorizonsFarApartAreNotTakenForGlitches) {
+  for (double gap_s : {0.2, 0.3, 0.5}) {
+    AttitudeFilterOptions options;  // max_jump_deg 10, max_gap_s 0.15
+    options.smoothing = 0.0;
+    AttitudeFilter filter(options);
+    for (int i = 0; i < 30; ++i) ASSERT_EQ(filter.update(true, gaitRoll(i / 30.0), gaitPitch(i / 30.0), 0.9, i / 30.0), AttitudeFilter::Outcome::kAccepted);
+    int rejected = 0, glitches_rejected = 0, glitches = 0;
+    for (double t = 1.0; t < 4.0; t += gap_s) {
+      if (static_cast<int>(std::lround((t - 1.0) / gap_s)) % 4 == 3) {  // a box's top edge, 15 deg off
+        ++glitches;
+        glitches_rejected += filter.update(true, gaitRoll(t) + 15 * kDeg, gaitPitch(t), 0.9, t) == AttitudeFilter::Outcome::kJump;
+        continue;
+      }
+      rejected += filter.update(true, gaitRoll(t), gaitPitch(t), 0.9, t) != AttitudeFilter::Outcome::kAccepted;
+    }
+    std::printf("[ attitude filter ] horizons %.1f s apart in the gait: %d true ones rejected, %d of %d glitches rejected\n",
+                gap_s, rejected, glitches_rejected, glitches);
+    EXPECT_EQ(rejected, 0) << gap_s;
+    EXPECT_EQ(glitches_rejected, glitches) << gap_s;
+  }
+}
+
 // The gait's sway between horizons 100 ms apart (the landmark node skipped two frames): the
 // timeline follows it, where a linear interpolation of the same horizons is off by 0.4 deg.
 TEST(AttitudeTimeline, FollowsTheGaitAcrossSkippedHorizons) {
@@ -419,7 +446,7 @@ TEST(AttitudeTimeline, NoAttitudeAcrossGapsLongerThanMaxGap) {
   for (double gap_s : {0.1, 0.15, 0.2, 0.3, 0.5}) {
     AttitudeFilterOptions wide = options;
     wide.max_gap_s = 1.0;
-    wide.max_jump_deg = 90;  // far apart, the horizons stray from the filter's prediction: all taken
+    wide.max_jump_deg = 90;  // the gate carries the rate across gaps up to max_gap_s: here all are taken
     std::printf("[ attitude timeline ] horizons %.2f s apart in the gait: worst error between them %.2f deg\n", gap_s,
                 worstErrorBetweenHorizons(gap_s, wide) / kDeg);
   }
