@@ -74,13 +74,16 @@ inline bool isFiniteNumber(const char* text, double* value) {
   return end != text && *end == '\0' && std::isfinite(*value);
 }
 
-// Pins the process to one CPU so one-thread figures are one-core figures.
-inline void pinToOneCpu() {
+// Pins the calling thread (and the threads it starts after) to CPU `cpu`.
+inline void pinToCpu(int cpu) {
   cpu_set_t set;
   CPU_ZERO(&set);
-  CPU_SET(0, &set);
+  CPU_SET(cpu, &set);
   sched_setaffinity(0, sizeof(set), &set);
 }
+
+// Pins the process to one CPU so one-thread figures are one-core figures.
+inline void pinToOneCpu() { pinToCpu(0); }
 
 // The CPU's model name (results files say where they were measured).
 inline std::string machineName() {

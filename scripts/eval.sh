@@ -52,8 +52,9 @@ if [[ -d "$negatives_dir" ]]; then
   "$WS/devel/lib/rle_vision/rle_vision_eval_balls_by_date" --label-class "${EVAL_BALL_CLASS:-0}" \
     --json "$RESULTS_DIR/eval_balls_by_date.json" "$negatives_dir"
   if [[ -z "${EVAL_NEGATIVES_DIR:-}" ]]; then checked+=(--balls-by-date "$RESULTS_DIR/eval_balls_by_date.json"); fi
-  # The ball verifier (issue 30): each date held out, calibrated and trained on the others.
-  "$WS/devel/lib/rle_vision/rle_vision_eval_verifier" --label-class "${EVAL_BALL_CLASS:-0}" \
+  # The ball verifier (issue 30): each date held out, calibrated and trained on the others; JOBS
+  # dates at a time (the same figures as one at a time).
+  "$WS/devel/lib/rle_vision/rle_vision_eval_verifier" --label-class "${EVAL_BALL_CLASS:-0}" --jobs "${JOBS:-2}" \
     --json "$RESULTS_DIR/eval_verifier.json" "$negatives_dir"
   if [[ -z "${EVAL_NEGATIVES_DIR:-}" ]]; then checked+=(--verifier "$RESULTS_DIR/eval_verifier.json"); fi
 fi
