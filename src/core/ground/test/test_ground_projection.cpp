@@ -308,6 +308,11 @@ TEST(GroundProjection, BoxesLandOnTheirFootprintsWithThePoseFromTheHorizon) {
 double gaitRoll(double t) { return 3 * kDeg * std::sin(2 * M_PI * t); }
 double gaitPitch(double t) { return 20 * kDeg + 2 * kDeg * std::sin(4 * M_PI * t); }
 
+// The gait's horizon at t (s), as the landmark node would send it with `confidence`.
+AttitudeTimeline::Update addGaitHorizon(AttitudeTimeline* timeline, double t, double confidence) {
+  return timeline->addHorizon(true, gaitRoll(t), gaitPitch(t), confidence, t);
+}
+
 TEST(AttitudeFilter, FollowsAGaitWithoutLagAndIgnoresGlitches) {
   AttitudeFilterOptions options;
   options.smoothing = 0.1;
@@ -400,7 +405,7 @@ TEST(AttitudeTimeline, FollowsTheGaitAcrossSkippedHorizons) {
   for (int i = 0; i < 60; ++i) horizon_stamps.push_back(i / 30.0);
   for (int i = 60; i <= 123; i += 3) horizon_stamps.push_back(i / 30.0);
   for (double t : horizon_stamps) {
-    ASSERT_TRUE(timeline.addHorizon(true, gaitRoll(t), gaitPitch(t), 0.9, t).valid);
+    ASSERT_TRUE(addGaitHorizon(&timeline, t, 0.9).valid);
   }
   double worst = 0, worst_linear = 0;
   for (int i = 61; i < 120; ++i) {
@@ -426,8 +431,8 @@ TEST(AttitudeTimeline, FollowsTheGaitAcrossSkippedHorizons) {
 // between them (rad), or -1 when no image between them gets one.
 double worstErrorBetweenHorizons(double gap_s, const AttitudeFilterOptions& options) {
   AttitudeTimeline timeline(options);
-  for (int i = 0; i < 30; ++i) timeline.addHorizon(true, gaitRoll(i / 30.0), gaitPitch(i / 30.0), 0.9, i / 30.0);
-  for (double t = 1.0; t <= 2.5 + gap_s; t += gap_s) timeline.addHorizon(true, gaitRoll(t), gaitPitch(t), 0.9, t);
+  for (int i = 0; i < 30; ++i) addGaitHorizon(&timeline, i / 30.0, 0.9);
+  for (double t = 1.0; t <= 2.5 + gap_s; t += gap_s) addGaitHorizon(&timeline, t, 0.9);
   double worst = -1;
   for (double t = 1.0 + 2 * gap_s + 1.0 / 60; t < 2.5; t += 1.0 / 30) {  // between frames, not at a horizon
     double roll = 0, pitch = 0;
@@ -473,13 +478,13 @@ TEST(AttitudeTimeline, RejectedHorizonsAreBridgedNotExtrapolated) {
   AttitudeTimeline timeline(options);
   std::map<int, double> worst_extrapolated, worst_bridged;  // by run length (rad)
   int i = 0;
-  for (; i < 30; ++i) ASSERT_TRUE(timeline.addHorizon(true, gaitRoll(i / 30.0), gaitPitch(i / 30.0), 0.9, i / 30.0).recorded);
+  for (; i < 30; ++i) ASSERT_TRUE(addGaitHorizon(&timeline, i / 30.0, 0.9).recorded);
   for (int cycle = 0; cycle < 3; ++cycle) {
     for (int run : {1, 2, 3, 4, 6}) {
       std::vector<double> stamps;
       for (int k = 0; k < run; ++k, ++i) {
         const double t = i / 30.0;
-        const AttitudeTimeline::Update update = timeline.addHorizon(true, gaitRoll(t), gaitPitch(t), 0.1, t);
+        const AttitudeTimeline::Update update = addGaitHorizon(&timeline, t, 0.1);
         ASSERT_TRUE(update.valid);
         ASSERT_FALSE(update.recorded);
         EXPECT_EQ(update.attitude.confidence, 0.0);
@@ -487,7 +492,7 @@ TEST(AttitudeTimeline, RejectedHorizonsAreBridgedNotExtrapolated) {
         worst_extrapolated[run] = std::max(worst_extrapolated[run], error);
         stamps.push_back(t);
       }
-      for (int k = 0; k < 4; ++k, ++i) timeline.addHorizon(true, gaitRoll(i / 30.0), gaitPitch(i / 30.0), 0.9, i / 30.0);
+      for (int k = 0; k < 4; ++k, ++i) addGaitHorizon(&timeline, i / 30.0, 0.9);
       for (double t : stamps) {  // the run's images, once the accepted horizons after it came
         double roll = 0, pitch = 0;
         const AttitudeTimeline::Lookup lookup = timeline.attitudeAt(t, &roll, &pitch);
