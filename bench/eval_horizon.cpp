@@ -23,6 +23,7 @@
 // under perturbations (eval/horizon_data.h), ours held out against FastLineDetector.
 // --train-output writes the model fitted on every group.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdlib>
 #include <cstdio>
@@ -55,6 +56,9 @@ using eval::HorizonFrame;
 // The model's L2 penalties on standardised weights tried: each fit chooses one, with its
 // threshold, by cross-validation over the groups it is fitted on.
 constexpr double kL2Choices[] = {0.1, 1, 10, 100, 1000, 10000, 100000};
+// The stop probabilities tried (HorizonModel::stop_probability): the candidates are weighed in
+// order and the first at least this probable is taken; 2: every candidate weighed.
+constexpr double kStopChoices[] = {0.5, 0.6, 0.7, 0.8, 0.9, 0.95, 0.98, 0.99, 0.995, 0.999, 2};
 const char* const kHeldOut = "ours, model held out (leave one group out)";
 const char* const kShipped = "ours, shipped model (in sample)";
 const char* const kProduct = "ours, evidence product (no model)";
@@ -225,17 +229,28 @@ FrameData analyse(const cv::Mat& image, bool has_horizon, const ImageLine& truth
   return f;
 }
 
-// Our decision on a frame with `model`: its most probable candidate, found from min_confidence.
+// The candidate `model` takes on a frame, as the detector does: the most probable, or the first
+// reaching its stop probability (-1: none).
+int chosenCandidate(const FrameData& f, const HorizonModel& model, double* probability) {
+  int chosen = -1;
+  *probability = -1;
+  for (size_t i = 0; i < f.candidates.size(); ++i) {
+    const double p = model.probability(f.candidates[i].features);
+    if (p > *probability) *probability = p, chosen = static_cast<int>(i);
+    if (p >= model.stop_probability) break;
+  }
+  return chosen;
+}
+
+// Our decision on a frame with `model`: its chosen candidate, found from min_confidence.
 Detection decide(const FrameData& f, const HorizonModel& model, double min_confidence, double ms) {
   Detection d;
   d.ms = ms;
   d.segments = f.our_segments;
-  double best = -1;
-  for (const HorizonEstimate& c : f.candidates) {
-    const double p = model.probability(c.features);
-    if (p <= best) continue;
-    best = p;
-    d.horizon = c.line;
+  double p = 0;
+  const int chosen = chosenCandidate(f, model, &p);
+  if (chosen >= 0) {
+    d.horizon = f.candidates[chosen].line;
     d.found = p >= min_confidence;
   }
   return d;
@@ -309,7 +324,7 @@ double frameErrorCost(const std::vector<InnerScore>& scored, double t) {
 }
 
 struct ModelChoice {
-  double l2 = 1, threshold = 0.5;
+  double l2 = 1, threshold = 0.5, stop = 2;
 };
 
 // The L2 penalty and decision threshold for the frames `use` accepts: each group scored by a
@@ -334,26 +349,67 @@ ModelChoice chooseModel(const std::vector<FrameData>& frames, Use use) {
   return best;
 }
 
-// The model for the frames outside `held_out` ("": every frame), its penalty and decision
-// threshold chosen by the inner cross-validation, the threshold moved into the bias so that it
-// decides at probability 0.5.
-HorizonModel fitWithout(const std::vector<FrameData>& frames, const std::string& held_out, ModelChoice* chosen = nullptr) {
-  auto use = [&](const FrameData& f) { return held_out.empty() || f.group != held_out; };
-  const ModelChoice choice = chooseModel(frames, use);
+// The model for the frames `use` accepts with penalty and threshold `choice`, the threshold
+// moved into the bias so that it decides at probability 0.5.
+template <typename Use>
+HorizonModel fitChosen(const std::vector<FrameData>& frames, Use use, const ModelChoice& choice) {
   HorizonModel model = fitOn(frames, use, choice.l2);
   model.bias -= std::log(choice.threshold / (1 - choice.threshold));
+  return model;
+}
+
+// The stop probability for the frames `use` accepts: each group decided by a model of `choice`
+// fitted without it, the stop that gets the most frames right (a horizon found and passing, or
+// none found where there is none); of equals, the highest (weighing every candidate, when no
+// stop does better).
+template <typename Use>
+double chooseStop(const std::vector<FrameData>& frames, Use use, const ModelChoice& choice) {
+  std::set<std::string> groups;
+  for (const FrameData& f : frames) {
+    if (use(f)) groups.insert(f.group);
+  }
+  constexpr size_t kStops = std::size(kStopChoices);
+  std::array<int, kStops> right{};
+  for (const std::string& g : groups) {
+    HorizonModel model = fitChosen(frames, [&](const FrameData& f) { return use(f) && f.group != g; }, choice);
+    for (const FrameData& f : frames) {
+      if (!use(f) || f.group != g) continue;
+      for (size_t k = 0; k < kStops; ++k) {
+        model.stop_probability = kStopChoices[k];
+        double p = 0;
+        const int chosen = chosenCandidate(f, model, &p);
+        const bool found = chosen >= 0 && p >= 0.5;
+        right[k] += f.has_horizon ? found && f.candidate_passes[chosen] : !found;
+      }
+    }
+  }
+  size_t best = kStops - 1;  // ties: the higher stop, nearer weighing every candidate
+  for (size_t k = kStops - 1; k-- > 0;) {
+    if (right[k] > right[best]) best = k;
+  }
+  return kStopChoices[best];
+}
+
+// The model for the frames outside `held_out` ("": every frame), its penalty, decision
+// threshold and stop probability chosen by the inner cross-validation.
+HorizonModel fitWithout(const std::vector<FrameData>& frames, const std::string& held_out, ModelChoice* chosen = nullptr) {
+  auto use = [&](const FrameData& f) { return held_out.empty() || f.group != held_out; };
+  ModelChoice choice = chooseModel(frames, use);
+  choice.stop = chooseStop(frames, use, choice);
+  HorizonModel model = fitChosen(frames, use, choice);
+  model.stop_probability = choice.stop;
   if (chosen) *chosen = choice;
   return model;
 }
 
 std::map<std::string, HorizonModel> heldOutModels(const std::vector<FrameData>& frames) {
   std::map<std::string, HorizonModel> models;
-  std::printf("held-out models' L2 penalty / threshold, chosen without the group:");
+  std::printf("held-out models' L2 penalty / threshold / stop probability, chosen without the group:");
   for (const FrameData& f : frames) {
     if (models.count(f.group)) continue;
     ModelChoice choice;
     models[f.group] = fitWithout(frames, f.group, &choice);
-    std::printf(" %s %g/%.2f", f.group.c_str(), choice.l2, choice.threshold);
+    std::printf(" %s %g/%.2f/%g", f.group.c_str(), choice.l2, choice.threshold, choice.stop);
   }
   std::printf("\n");
   return models;

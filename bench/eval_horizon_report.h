@@ -278,9 +278,9 @@ void writeModel(const EvalArguments& a, const std::vector<FrameData>& frames) {
   std::string provenance =
       "The horizon model of rle_vision (see include/rle_vision/landmark/horizon_model.h): a logistic regression\n"
       "over the evidence of every candidate line, fitted (L2 " + cv::format("%g", choice.l2) +
-      " on standardised weights and threshold " + cv::format("%.2f", choice.threshold) +
-      ", both chosen by leave-one-group-out\n"
-      "cross-validation; each class weighing as much as the other) by `make train-horizon` on the frames of:\n";
+      " on standardised weights, threshold " + cv::format("%.2f", choice.threshold) + " and stop probability " +
+      cv::format("%g", choice.stop) + ", all chosen by\n"
+      "leave-one-group-out cross-validation; each class weighing as much as the other) by `make train-horizon` on the frames of:\n";
   for (const std::string& s : sets) provenance += "  " + s + "\n";
   provenance += "Held-out figures (each flight, date or scene scored by a model fitted without it): make eval.";
   std::ofstream(a.train_output) << horizonModelYaml(model, provenance);

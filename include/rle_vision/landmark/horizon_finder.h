@@ -21,10 +21,11 @@
 namespace rle_vision {
 
 // The parameters are the HORIZON group of landmark_params.def, with their defaults and meanings.
-// `model`, when valid, weighs every candidate line (the region splits and the merged Hough
-// lines) by the probability it gives, and the most probable is the horizon when that reaches
-// min_confidence; without one, the candidates are weighed by the product of the region evidence
-// in order and the first convincing one wins.
+// `model`, when valid, weighs the candidate lines in order (the region splits, then the merged
+// Hough lines) by the probability it gives: the first reaching its stop_probability is the
+// horizon (the rest not refined), else the most probable when that reaches min_confidence;
+// without one, the candidates are weighed by the product of the region evidence in order and
+// the first convincing one wins.
 struct HorizonOptions {
 #define RLE_HORIZON_PARAM(key, member, type, default_value, min, max, description) type member = default_value;
 #include "rle_vision/params/landmark_params.def"
@@ -68,8 +69,9 @@ class HorizonDetector {
   HorizonEstimate detect(const cv::Mat& bgr, const cv::Mat& edges, double edge_gain,
                          const std::vector<DetectedLine>& lines, const HorizonOptions& options);
 
-  // Every candidate line weighed (the region splits, then the merged Hough lines), with its
-  // features, confidence and found flag as detect() would give them: what a model learns from.
+  // Every candidate line weighed (the region splits, then the merged Hough lines; all of them,
+  // whatever the model's stop_probability), with its features, confidence and found flag as
+  // detect() would give them: what a model learns from.
   std::vector<HorizonEstimate> candidates(const cv::Mat& bgr, const cv::Mat& edges, double edge_gain,
                                           const std::vector<DetectedLine>& lines, const HorizonOptions& options);
 

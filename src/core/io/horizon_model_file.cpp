@@ -32,7 +32,7 @@ void readList(const std::string& origin, const YAML::Node& root, const char* key
 HorizonModel parseHorizonModel(const std::string& text, const std::string& origin) {
   const YAML::Node root = yaml_reader::parse(text, origin);
   if (!root || !root.IsMap()) yaml_reader::fail(origin, 1, "expected a mapping with features, mean, scale, weights, bias");
-  yaml_reader::checkKeys(origin, root, {"features", "mean", "scale", "weights", "bias"});
+  yaml_reader::checkKeys(origin, root, {"features", "mean", "scale", "weights", "bias", "stop_probability"});
   const YAML::Node names = root["features"];
   if (!names || !names.IsSequence() || names.size() != static_cast<size_t>(kHorizonFeatureCount)) {
     yaml_reader::fail(origin, names ? names : root,
@@ -53,6 +53,12 @@ HorizonModel parseHorizonModel(const std::string& text, const std::string& origi
   }
   if (!root["bias"]) yaml_reader::fail(origin, root, "'bias' is missing");
   m.bias = yaml_reader::number(origin, root, "bias", 0);
+  if (root["stop_probability"]) {  // files made before it: every candidate weighed
+    m.stop_probability = yaml_reader::number(origin, root, "stop_probability", 2);
+    if (!(m.stop_probability >= 0.5)) {
+      yaml_reader::fail(origin, root["stop_probability"], "'stop_probability' must be 0.5 or more (above 1: weigh every candidate)");
+    }
+  }
   m.valid = true;
   return m;
 }
@@ -82,6 +88,7 @@ std::string horizonModelYaml(const HorizonModel& m, const std::string& provenanc
   list("scale", m.scale);
   list("weights", m.weights);
   yaml << "bias: " << std::setprecision(9) << m.bias << "\n";
+  if (m.stop_probability <= 1) yaml << "stop_probability: " << std::setprecision(9) << m.stop_probability << "\n";
   return yaml.str();
 }
 

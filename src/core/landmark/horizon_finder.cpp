@@ -138,7 +138,9 @@ struct HorizonDetector::Impl {
 
   HorizonEstimate detect(const cv::Mat& bgr, const cv::Mat& edges, double edge_gain,
                          const std::vector<DetectedLine>& lines, const HorizonOptions& o);
-  std::vector<HorizonEstimate> candidates(const cv::Mat& bgr, const cv::Mat& edges, double edge_gain,
+  // Every candidate, in order (region splits, then merged Hough lines), up to the first whose
+  // model probability reaches `stop_at` (INFINITY: all).
+  std::vector<HorizonEstimate> candidates(const cv::Mat& bgr, const cv::Mat& edges, double edge_gain, double stop_at,
                                           const std::vector<DetectedLine>& lines, const HorizonOptions& o);
   // Builds the grids; false when the frame is not one the region search can split.
   bool prepare(const cv::Mat& bgr, const cv::Mat& edges, const HorizonOptions& o);
@@ -167,7 +169,7 @@ HorizonEstimate HorizonDetector::detect(const cv::Mat& bgr, const cv::Mat& edges
 std::vector<HorizonEstimate> HorizonDetector::candidates(const cv::Mat& bgr, const cv::Mat& edges, double edge_gain,
                                                          const std::vector<DetectedLine>& lines,
                                                          const HorizonOptions& o) {
-  return impl_->candidates(bgr, edges, edge_gain, lines, o);
+  return impl_->candidates(bgr, edges, edge_gain, INFINITY, lines, o);
 }
 
 bool HorizonDetector::Impl::prepare(const cv::Mat& bgr, const cv::Mat& edges, const HorizonOptions& o) {
@@ -208,10 +210,11 @@ std::vector<horizon::Hypothesis> HorizonDetector::Impl::houghHypotheses(const st
 HorizonEstimate HorizonDetector::Impl::detect(const cv::Mat& bgr, const cv::Mat& edges, double edge_gain,
                                               const std::vector<DetectedLine>& lines, const HorizonOptions& o) {
   if (o.model.valid) {
-    // Every candidate weighed by the model: the most probable one.
+    // The candidates weighed by the model: the most probable one, or the first the model is
+    // sure of (its stop_probability), the rest not refined.
     HorizonEstimate best;
     bool any = false;
-    for (const HorizonEstimate& h : candidates(bgr, edges, edge_gain, lines, o)) {
+    for (const HorizonEstimate& h : candidates(bgr, edges, edge_gain, o.model.stop_probability, lines, o)) {
       if (!any || h.confidence > best.confidence) best = h;
       any = true;
     }
@@ -232,7 +235,8 @@ HorizonEstimate HorizonDetector::Impl::detect(const cv::Mat& bgr, const cv::Mat&
 }
 
 std::vector<HorizonEstimate> HorizonDetector::Impl::candidates(const cv::Mat& bgr, const cv::Mat& edges,
-                                                               double edge_gain, const std::vector<DetectedLine>& lines,
+                                                               double edge_gain, double stop_at,
+                                                               const std::vector<DetectedLine>& lines,
                                                                const HorizonOptions& o) {
   std::vector<HorizonEstimate> out;
   if (!prepare(bgr, edges, o)) return out;
@@ -261,6 +265,7 @@ std::vector<HorizonEstimate> HorizonDetector::Impl::candidates(const cv::Mat& bg
           h.found = h.confidence >= o.min_confidence;
         }
         out.push_back(h);
+        if (o.model.valid && h.confidence >= stop_at) return out;
       }
     }
   }

@@ -134,6 +134,12 @@ TEST(HorizonModelFile, WritesAndReadsBackTheSameModel) {
     EXPECT_NEAR(back.mean[f], m.mean[f], 1e-8 * (1 + std::fabs(m.mean[f])));
   }
   EXPECT_NEAR(back.probability(samples.x[0]), m.probability(samples.x[0]), 1e-7);
+  // Without a stop probability every candidate is weighed (files made before it too).
+  EXPECT_GT(back.stop_probability, 1);
+  EXPECT_EQ(yaml.find("stop_probability"), std::string::npos);
+  HorizonModel stopping = m;
+  stopping.stop_probability = 0.99;
+  EXPECT_EQ(parseHorizonModel(horizonModelYaml(stopping, "test"), "test.yaml").stop_probability, 0.99);
 }
 
 TEST(HorizonModelFile, BrokenFilesAreRefusedWithTheLineAndTheReason) {
@@ -159,6 +165,8 @@ TEST(HorizonModelFile, BrokenFilesAreRefusedWithTheLineAndTheReason) {
   word.replace(weights, word.find(',', weights) - weights, "heavy");
   refused(word, "'weights' holds something that is not a number");
   refused("features: [a]\n", "'features' must list the");
+  refused(good + "stop_probability: 0.4\n", "'stop_probability' must be 0.5 or more");
+  refused(good + "stop_probability: .nan\n", "'stop_probability'");
   EXPECT_THROW(loadHorizonModel("/nonexistent/model.yaml"), ConfigError);
   EXPECT_FALSE(horizonModelFromSetting("none").valid);
 }
@@ -223,6 +231,44 @@ TEST(HorizonModel, CandidatesCarryTheirEvidence) {
       EXPECT_LE(model.probability(c.features), model.probability(truth->features));
     }
   }
+}
+
+// With a stop probability the detector takes the first candidate the model is that sure of
+// and refines no further; above 1 it takes the most probable of all (the same frames, the same
+// candidates in the same order as candidates() lists them).
+TEST(HorizonModel, TheFirstCandidateTheModelIsSureOfEndsTheSearch) {
+  const SceneSimulator outdoor(loadSceneConfig(test::sourcePath("config/scene_default.yaml")));
+  LandmarkOptions options;
+  options.horizon.model = horizonModelFromSetting("");
+  ASSERT_TRUE(options.horizon.model.valid);
+  LandmarkDetector detector;
+  LandmarkResult result;
+  HorizonDetector horizon;
+  int stopped_early = 0;
+  for (int i = 0; i < 10; ++i) {
+    const SimFrame frame = outdoor.render(29 * i, 29 * i / 30.0);
+    options.horizon.model.stop_probability = 2;
+    detector.detectInImage(frame.image, options, &result);
+    const std::vector<HorizonEstimate> all =
+        horizon.candidates(frame.image, detector.edges(), options.edge_gain, result.lines, options.horizon);
+    ASSERT_GE(all.size(), 2u);
+    const auto most_probable = std::max_element(all.begin(), all.end(), [](const HorizonEstimate& a, const HorizonEstimate& b) {
+      return a.confidence < b.confidence;
+    });
+    EXPECT_EQ(result.horizon.confidence, most_probable->confidence);
+    EXPECT_EQ(result.horizon.line.theta, most_probable->line.theta);
+    // A stop just below the second candidate's probability: the first that reaches it.
+    const double stop = std::min(0.999999, all[1].confidence);
+    const auto first_sure = std::find_if(all.begin(), all.end(), [&](const HorizonEstimate& c) { return c.confidence >= stop; });
+    ASSERT_NE(first_sure, all.end());
+    options.horizon.model.stop_probability = stop;
+    detector.detectInImage(frame.image, options, &result);
+    EXPECT_EQ(result.horizon.confidence, first_sure->confidence) << "frame " << i;
+    EXPECT_EQ(result.horizon.line.theta, first_sure->line.theta) << "frame " << i;
+    stopped_early += first_sure->confidence < most_probable->confidence;
+  }
+  // The rule changed the choice on some frames: the test tells the two apart.
+  EXPECT_GT(stopped_early, 0);
 }
 
 }  // namespace
