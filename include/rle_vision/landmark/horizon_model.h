@@ -39,8 +39,8 @@ struct HorizonModel {
   double bias = 0;
   // The candidates are weighed in order (region splits, then merged Hough lines) and the first
   // whose probability reaches this is taken, the rest not refined: a sure horizon costs one
-  // refinement instead of a dozen. Chosen with the model (the lowest that loses no frame in
-  // its cross-validation); above 1: every candidate weighed, the most probable taken.
+  // refinement instead of a dozen. Chosen with the model (the stop that gets the most frames
+  // right in its cross-validation); above 1: every candidate weighed, the most probable taken.
   double stop_probability = 2;
   bool valid = false;  // false: no model (the product of the region evidence is used)
   // P(the candidate is the horizon).
