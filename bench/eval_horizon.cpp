@@ -284,26 +284,33 @@ struct InnerScore {
   int pass;
 };
 
-// The frames `use` accepts, each group scored by a model (penalty `l2`) fitted without it.
-template <typename Use>
-std::vector<InnerScore> innerScores(const std::vector<FrameData>& frames, Use use, double l2) {
+// The inner folds over the frames `use` accepts: per group, `fit(in_fold)` fitted on the other
+// groups' frames, then `visit(frame, model)` on each frame of the group.
+template <typename Use, typename Fit, typename Visit>
+void forEachInnerFold(const std::vector<FrameData>& frames, Use use, Fit fit, Visit visit) {
   std::set<std::string> groups;
   for (const FrameData& f : frames) {
     if (use(f)) groups.insert(f.group);
   }
-  std::vector<InnerScore> scored;
   for (const std::string& g : groups) {
-    const HorizonModel model = fitOn(frames, [&](const FrameData& f) { return use(f) && f.group != g; }, l2);
+    HorizonModel model = fit([&](const FrameData& f) { return use(f) && f.group != g; });
     for (const FrameData& f : frames) {
-      if (!use(f) || f.group != g) continue;
-      InnerScore s{&f, 0, 0};
-      for (size_t i = 0; i < f.candidates.size(); ++i) {
-        const double p = model.probability(f.candidates[i].features);
-        if (p > s.best) s.best = p, s.pass = f.candidate_passes[i];
-      }
-      scored.push_back(s);
+      if (use(f) && f.group == g) visit(f, model);
     }
   }
+}
+
+// The frames `use` accepts, each group scored by a model (penalty `l2`) fitted without it.
+template <typename Use>
+std::vector<InnerScore> innerScores(const std::vector<FrameData>& frames, Use use, double l2) {
+  std::vector<InnerScore> scored;
+  forEachInnerFold(
+      frames, use, [&](auto in_fold) { return fitOn(frames, in_fold, l2); },
+      [&](const FrameData& f, const HorizonModel& model) {
+        double p = 0;
+        const int chosen = chosenCandidate(f, model, &p);  // the model weighs every candidate
+        scored.push_back(chosen >= 0 ? InnerScore{&f, p, f.candidate_passes[chosen]} : InnerScore{&f, 0, 0});
+      });
   return scored;
 }
 
@@ -364,25 +371,19 @@ HorizonModel fitChosen(const std::vector<FrameData>& frames, Use use, const Mode
 // stop does better).
 template <typename Use>
 double chooseStop(const std::vector<FrameData>& frames, Use use, const ModelChoice& choice) {
-  std::set<std::string> groups;
-  for (const FrameData& f : frames) {
-    if (use(f)) groups.insert(f.group);
-  }
   constexpr size_t kStops = std::size(kStopChoices);
   std::array<int, kStops> right{};
-  for (const std::string& g : groups) {
-    HorizonModel model = fitChosen(frames, [&](const FrameData& f) { return use(f) && f.group != g; }, choice);
-    for (const FrameData& f : frames) {
-      if (!use(f) || f.group != g) continue;
-      for (size_t k = 0; k < kStops; ++k) {
-        model.stop_probability = kStopChoices[k];
-        double p = 0;
-        const int chosen = chosenCandidate(f, model, &p);
-        const bool found = chosen >= 0 && p >= 0.5;
-        right[k] += f.has_horizon ? found && f.candidate_passes[chosen] : !found;
-      }
-    }
-  }
+  forEachInnerFold(
+      frames, use, [&](auto in_fold) { return fitChosen(frames, in_fold, choice); },
+      [&](const FrameData& f, HorizonModel& model) {
+        for (size_t k = 0; k < kStops; ++k) {
+          model.stop_probability = kStopChoices[k];
+          double p = 0;
+          const int chosen = chosenCandidate(f, model, &p);
+          const bool found = chosen >= 0 && p >= 0.5;  // fitChosen's model decides at 0.5
+          right[k] += f.has_horizon ? found && f.candidate_passes[chosen] : !found;
+        }
+      });
   size_t best = kStops - 1;  // ties: the higher stop, nearer weighing every candidate
   for (size_t k = kStops - 1; k-- > 0;) {
     if (right[k] > right[best]) best = k;
