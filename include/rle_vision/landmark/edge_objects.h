@@ -71,6 +71,8 @@ class EdgeObjectFinder {
   uint8_t used_gray_ = 0;
   int tile_ = 1, tile_cols_ = 1;
   std::vector<uint8_t> tile_gray_;  // the gray band's threshold per tile, row-major
+  std::vector<uint8_t> pixel_gray_;  // rowClasses(): the thresholds of one tile row, per pixel
+  int pixel_gray_tile_row_ = -1;     // the tile row pixel_gray_ holds (-1: none yet this frame)
 };
 
 }  // namespace rle_vision

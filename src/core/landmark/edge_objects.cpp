@@ -8,10 +8,14 @@
 namespace rle_vision {
 namespace {
 
+// Per pixel: 0 below its gray threshold, 1 in the gray band, 2 sharp. One pass over the whole
+// row (the tiles' thresholds spread over their pixels): per-tile stretches left most of the
+// work to the scalar tails.
 RLE_VISION_HOT
-void edgeClasses(const uint8_t* __restrict edges, int width, uint8_t gray, uint8_t sharp, uint8_t* __restrict labels) {
+void edgeClasses(const uint8_t* __restrict edges, int width, const uint8_t* __restrict gray, uint8_t sharp,
+                 uint8_t* __restrict labels) {
   for (int x = 0; x < width; ++x) {
-    labels[x] = static_cast<uint8_t>((edges[x] >= gray) + (edges[x] >= sharp));
+    labels[x] = static_cast<uint8_t>((edges[x] >= gray[x]) + (edges[x] >= sharp));
   }
 }
 
@@ -85,6 +89,7 @@ void EdgeObjectFinder::grayThresholds(const cv::Mat& edges, const EdgeObjectOpti
   tile_cols_ = (edges.cols + tile_ - 1) / tile_;
   const int tile_rows = (edges.rows + tile_ - 1) / tile_;
   tile_gray_.assign(static_cast<size_t>(tile_rows) * tile_cols_, fixed);
+  pixel_gray_tile_row_ = -1;
   used_gray_ = fixed;
   if (!o.adaptive) return;
   // Per tile, the median edge value (every second pixel): the noise and texture an edge must
@@ -111,11 +116,14 @@ void EdgeObjectFinder::grayThresholds(const cv::Mat& edges, const EdgeObjectOpti
 }
 
 void EdgeObjectFinder::rowClasses(const uint8_t* edges, int width, int y, uint8_t sharp) {
-  const uint8_t* gray = &tile_gray_[static_cast<size_t>(y / tile_) * tile_cols_];
-  for (int tx = 0; tx * tile_ < width; ++tx) {
-    const int x0 = tx * tile_;
-    edgeClasses(edges + x0, std::min(tile_, width - x0), gray[tx], sharp, labels_.data() + x0);
+  const int tile_row = y / tile_;
+  if (tile_row != pixel_gray_tile_row_) {
+    const uint8_t* gray = &tile_gray_[static_cast<size_t>(tile_row) * tile_cols_];
+    pixel_gray_.resize(width);
+    for (int x = 0; x < width; ++x) pixel_gray_[x] = gray[x / tile_];
+    pixel_gray_tile_row_ = tile_row;
   }
+  edgeClasses(edges, width, pixel_gray_.data(), sharp, labels_.data());
 }
 
 void EdgeObjectFinder::encodeEdges(const cv::Mat& edges, uint8_t sharp, std::vector<Run>* runs) {

@@ -248,16 +248,14 @@ std::vector<HorizonEstimate> HorizonDetector::Impl::candidates(const cv::Mat& bg
   const horizon::RefineOptions refine = refineOptions(o, edge_gain);
   std::vector<double> sky_percentiles = {o.sky_percentile};
   if (o.textured_sky_percentile < o.sky_percentile) sky_percentiles.push_back(o.textured_sky_percentile);
-  std::vector<horizon::RefinedHorizon> refined;
+  bool sure = false;
   for (const bool from_regions : {true, false}) {
     const std::vector<horizon::Hypothesis> hypotheses =
         from_regions ? regionHypotheses(width, height, refine, o) : houghHypotheses(lines, width, height, o);
     for (const horizon::Hypothesis& hypothesis : hypotheses) {
-      refined.clear();
-      refiner.refineEach(edges, fine, hypothesis, refine, sky_percentiles, &refined);
-      for (const horizon::RefinedHorizon& r : refined) {
+      refiner.refineEach(edges, fine, hypothesis, refine, sky_percentiles, [&](const horizon::RefinedHorizon& r) {
         // The fit may turn a line past the steepest horizon the user allows: then it is not one.
-        if (std::fabs(r.line.angle_deg) > o.max_angle_deg) continue;
+        if (std::fabs(r.line.angle_deg) > o.max_angle_deg) return false;
         HorizonEstimate h = estimate(r, o, width, height);
         h.features = features(r, from_regions, o);
         if (o.model.valid) {
@@ -265,8 +263,10 @@ std::vector<HorizonEstimate> HorizonDetector::Impl::candidates(const cv::Mat& bg
           h.found = h.confidence >= o.min_confidence;
         }
         out.push_back(h);
-        if (o.model.valid && h.confidence >= stop_at) return out;
-      }
+        sure = o.model.valid && h.confidence >= stop_at;
+        return sure;  // the candidate the model is sure of: the lower percentile not refined
+      });
+      if (sure) return out;
     }
   }
   return out;

@@ -280,17 +280,20 @@ bool sameLine(const SplitLine& a, const SplitLine& b, double inlier_px) {
 
 RefinedHorizon HorizonRefiner::refine(const cv::Mat& edges, const RegionGrid& fine, const Hypothesis& h,
                                       const RefineOptions& o) {
-  std::vector<RefinedHorizon> out;
-  refineEach(edges, fine, h, o, {o.sky_percentile}, &out);
-  return out.front();
+  RefinedHorizon out;
+  refineEach(edges, fine, h, o, {o.sky_percentile}, [&](const RefinedHorizon& r) {
+    out = r;
+    return true;
+  });
+  return out;
 }
 
 void HorizonRefiner::refineEach(const cv::Mat& edges, const RegionGrid& fine, const Hypothesis& h, const RefineOptions& o,
-                                const std::vector<double>& sky_percentiles, std::vector<RefinedHorizon>* out) {
+                                const std::vector<double>& sky_percentiles, const RefinedSink& take) {
   checkSamples(edges);
   const SplitLine start = SplitLine::fromAngleDistance(h.angle_deg, h.centre_distance, edges.cols, edges.rows);
   measureBand(edges, start, o.band_cells * fine.cell());
-  const size_t first = out->size();
+  refined_lines_.clear();
   double previous_threshold = -1;
   for (const double percentile : sky_percentiles) {
     const double t = threshold(percentile, o);
@@ -298,12 +301,13 @@ void HorizonRefiner::refineEach(const cv::Mat& edges, const RegionGrid& fine, co
     previous_threshold = t;
     RefinedHorizon r = fitAt(edges, start, t, o);
     // A lower threshold that found a line already refined adds nothing.
-    const auto same = [&](const RefinedHorizon& k) { return sameLine(k.line, r.line, o.inlier_px); };
-    if (std::any_of(out->begin() + first, out->end(), same)) continue;
+    const auto same = [&](const SplitLine& k) { return sameLine(k, r.line, o.inlier_px); };
+    if (std::any_of(refined_lines_.begin(), refined_lines_.end(), same)) continue;
+    refined_lines_.push_back(r.line);
     r.edge_at_line = medianEdgeAtInliers(edges, r.line, o.inlier_px);
     r.evidence = evidence(edges, fine, r.line, o);
     r.evidence.local_step = localStep(fine, r.line, std::sqrt(o.noise_variance));
-    out->push_back(r);
+    if (take(r)) return;
   }
 }
 

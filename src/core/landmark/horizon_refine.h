@@ -2,6 +2,7 @@
 // (private to the core).
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -61,11 +62,14 @@ class HorizonRefiner {
   void sampleTexture(const cv::Mat& edges, const RegionGrid& fine);
   RefinedHorizon refine(const cv::Mat& edges, const RegionGrid& fine, const Hypothesis& hypothesis,
                         const RefineOptions& options);
-  // The same once per sky percentile (options.sky_percentile unused), appended to *out: the
-  // sky's edge values and the band measured once; a percentile whose threshold or whose line
-  // (within the fit's resolution) an earlier one already gave adds nothing.
+  // The same once per sky percentile (options.sky_percentile unused), each line handed to
+  // `take` as soon as it is refined: the sky's edge values and the band measured once; a
+  // percentile whose threshold or whose line (within the fit's resolution) an earlier one
+  // already gave adds nothing. `take` returning true ends it: the later percentiles are not
+  // refined (their fits and evidence are most of a candidate's cost).
+  using RefinedSink = std::function<bool(const RefinedHorizon&)>;
   void refineEach(const cv::Mat& edges, const RegionGrid& fine, const Hypothesis& hypothesis, const RefineOptions& options,
-                  const std::vector<double>& sky_percentiles, std::vector<RefinedHorizon>* out);
+                  const std::vector<double>& sky_percentiles, const RefinedSink& take);
   // The evidence for a line as the horizon, from the grid's colours and the texture samples.
   Evidence evidence(const cv::Mat& edges, const RegionGrid& fine, const SplitLine& line, const RefineOptions& options);
 
@@ -89,6 +93,7 @@ class HorizonRefiner {
   std::vector<double> px_, py_, offsets_, weights_;
   std::vector<int> histogram_;
   std::vector<double> steps_, spreads_;
+  std::vector<SplitLine> refined_lines_;  // refineEach(): the lines of this hypothesis so far
   double sky_edge_level_ = 0;
   int sky_histogram_[256] = {0}, sky_samples_ = 0;
   int typical_peak_ = -1;  // the band's median scanline maximum, -1: no scanline

@@ -160,7 +160,8 @@ void RegionGrid::computeMoments() {
     for (int ch = 0; ch < 3; ++ch) mean[ch] += means_[i * 3 + ch];
   }
   for (double& m : mean) m /= std::max<size_t>(cells, 1);
-  moments_.assign(cells * kPadded, 0.0f);
+  // Every entry is written below: no zero fill first.
+  moments_.resize(cells * kPadded);
   for (size_t i = 0; i < cells; ++i) {
     const float c0 = static_cast<float>(means_[i * 3] - mean[0]);
     const float c1 = static_cast<float>(means_[i * 3 + 1] - mean[1]);
@@ -176,16 +177,20 @@ void RegionGrid::computeMoments() {
     m[7] = c1 * c1;
     m[8] = c1 * c2;
     m[9] = c2 * c2;
+    std::fill(m + kMoments, m + kPadded, 0.0f);
   }
-  down_.assign(static_cast<size_t>(rows_ + 1) * cols_ * kPadded, 0.0f);
+  down_.resize(static_cast<size_t>(rows_ + 1) * cols_ * kPadded);
+  std::fill(down_.begin(), down_.begin() + static_cast<size_t>(cols_) * kPadded, 0.0f);  // nothing above row 0
   for (int r = 0; r < rows_; ++r) {
     for (size_t k = 0; k < static_cast<size_t>(cols_) * kPadded; ++k) {
       down_[(static_cast<size_t>(r) + 1) * cols_ * kPadded + k] =
           down_[static_cast<size_t>(r) * cols_ * kPadded + k] + moments_[static_cast<size_t>(r) * cols_ * kPadded + k];
     }
   }
-  right_.assign(static_cast<size_t>(rows_) * (cols_ + 1) * kPadded, 0.0f);
+  right_.resize(static_cast<size_t>(rows_) * (cols_ + 1) * kPadded);
   for (int r = 0; r < rows_; ++r) {
+    float* first = &right_[static_cast<size_t>(r) * (cols_ + 1) * kPadded];
+    std::fill(first, first + kPadded, 0.0f);  // nothing left of column 0
     for (int c = 0; c < cols_; ++c) {
       const float* left = &right_[(static_cast<size_t>(r) * (cols_ + 1) + c) * kPadded];
       const float* m = &moments_[(static_cast<size_t>(r) * cols_ + c) * kPadded];
@@ -218,28 +223,66 @@ void RegionGrid::skySideSums(const SplitLine& line, double* sums) const {
   }
 }
 
+namespace {
+
+// The split scores of one search: the whole frame's covariance, the same for every line, is
+// measured once.
+class SplitScorer {
+ public:
+  SplitScorer(const RegionGrid& grid, double noise_variance, double min_fraction)
+      : grid_(grid),
+        noise_variance_(noise_variance),
+        min_fraction_(min_fraction),
+        log_det_total_(std::log(covarianceDet(sideStats(grid.total(), noise_variance).cov))) {}
+
+  double operator()(const SplitLine& line) const {
+    double sky[kMoments], ground[kMoments];
+    grid_.skySideSums(line, sky);
+    const double* total = grid_.total();
+    const double fraction = sky[0] / total[0];
+    if (!(fraction >= min_fraction_ && fraction <= 1 - min_fraction_)) return -INFINITY;
+    for (int k = 0; k < kMoments; ++k) ground[k] = total[k] - sky[k];
+    const SideStats a = sideStats(sky, noise_variance_), b = sideStats(ground, noise_variance_);
+    return log_det_total_ -
+           (a.n * std::log(covarianceDet(a.cov)) + b.n * std::log(covarianceDet(b.cov))) / (a.n + b.n);
+  }
+
+ private:
+  const RegionGrid& grid_;
+  double noise_variance_, min_fraction_, log_det_total_;
+};
+
+// The line at `angle_deg` through the frame's centre: the lines of one angle differ only in
+// rho, by their centre distance (the sine and cosine taken once per angle).
+SplitLine centreLine(double angle_deg, int width, int height) {
+  return SplitLine::fromAngleDistance(angle_deg, 0, width, height);
+}
+
+SplitLine shifted(SplitLine line, double centre_distance) {
+  line.rho += centre_distance;
+  return line;
+}
+
+}  // namespace
+
 double RegionGrid::splitScore(const SplitLine& line, double noise_variance, double min_fraction) const {
-  double sky[kMoments], ground[kMoments];
-  skySideSums(line, sky);
-  const double fraction = sky[0] / total_[0];
-  if (!(fraction >= min_fraction && fraction <= 1 - min_fraction)) return -INFINITY;
-  for (int k = 0; k < kMoments; ++k) ground[k] = total_[k] - sky[k];
-  const double log_det_total = std::log(covarianceDet(sideStats(total_, noise_variance).cov));
-  const SideStats a = sideStats(sky, noise_variance), b = sideStats(ground, noise_variance);
-  return log_det_total - (a.n * std::log(covarianceDet(a.cov)) + b.n * std::log(covarianceDet(b.cov))) / (a.n + b.n);
+  return SplitScorer(*this, noise_variance, min_fraction)(line);
 }
 
 std::vector<Hypothesis> searchSplits(const RegionGrid& fine, const RegionGrid& coarse, int width, int height,
                                      const SearchOptions& o) {
   std::vector<Hypothesis> all;
   const double reach = 0.5 * std::hypot(width, height), step = coarse.cell();
+  const SplitScorer coarse_score(coarse, o.noise_variance, o.min_fraction);
+  const SplitScorer fine_score(fine, o.noise_variance, o.min_fraction);
   for (double a = -90 + kGlobalAngleStepDeg; a <= 90 + 1e-9; a += kGlobalAngleStepDeg) {
     if (std::fabs(a) > o.max_angle_deg) continue;
-    const double nx = -std::sin(a * kDeg), ny = std::cos(a * kDeg);
-    const double extent = 0.5 * (width * std::fabs(nx) + height * std::fabs(ny));  // lines that cross the image
+    const SplitLine centre = centreLine(a, width, height);
+    // Lines that cross the image.
+    const double extent = 0.5 * (width * std::fabs(centre.nx) + height * std::fabs(centre.ny));
     for (double d = -reach; d <= reach + 1e-9; d += step) {
       if (std::fabs(d) > extent) continue;
-      const double score = coarse.splitScore(SplitLine::fromAngleDistance(a, d, width, height), o.noise_variance, o.min_fraction);
+      const double score = coarse_score(shifted(centre, d));
       if (std::isfinite(score)) all.push_back({a, d, score});
     }
   }
@@ -254,14 +297,14 @@ std::vector<Hypothesis> searchSplits(const RegionGrid& fine, const RegionGrid& c
   for (Hypothesis& h : best) {
     Hypothesis refined{h.angle_deg, h.centre_distance, -INFINITY};
     for (int i = -4; i <= 4; ++i) {
+      double a = h.angle_deg + i * kGlobalAngleStepDeg / 4;
+      const bool flipped = a > 90 || a <= -90;  // the same line with its normal flipped
+      if (flipped) a += a > 90 ? -180 : 180;
+      if (std::fabs(a) > o.max_angle_deg) continue;
+      const SplitLine centre = centreLine(a, width, height);
       for (int j = -4; j <= 4; ++j) {
-        double a = h.angle_deg + i * kGlobalAngleStepDeg / 4, d = h.centre_distance + j * step / 4;
-        if (a > 90 || a <= -90) {  // the same line with its normal flipped
-          a += a > 90 ? -180 : 180;
-          d = -d;
-        }
-        if (std::fabs(a) > o.max_angle_deg) continue;
-        const double score = fine.splitScore(SplitLine::fromAngleDistance(a, d, width, height), o.noise_variance, o.min_fraction);
+        const double d = (flipped ? -1 : 1) * (h.centre_distance + j * step / 4);
+        const double score = fine_score(shifted(centre, d));
         if (score > refined.score) refined = {a, d, score};
       }
     }

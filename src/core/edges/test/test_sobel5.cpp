@@ -44,6 +44,26 @@ TEST(Sobel5, SquaredMagnitudeEqualsOpenCvExactly) {
   }
 }
 
+TEST(Sobel5, SquaredMagnitudeIsExactAtTheLargestGradients) {
+  // 0/255 steps and binary noise reach |Gx|, |Gy| = 12240, the bound the 16-bit lanes rely on.
+  cv::Mat vertical_step(32, 32, CV_8UC3, cv::Scalar::all(0)), diagonal(32, 32, CV_8UC1, cv::Scalar(0));
+  vertical_step.colRange(16, 32).setTo(cv::Scalar::all(255));
+  for (int y = 0; y < diagonal.rows; ++y) diagonal.row(y).colRange(0, y).setTo(255);
+  cv::Mat noise(240, 320, CV_8UC3);
+  cv::RNG(7).fill(noise, cv::RNG::UNIFORM, 0, 2);
+  noise *= 255;
+  Sobel5 sobel;
+  cv::Mat ours;
+  for (const cv::Mat& image : {vertical_step, cv::Mat(vertical_step.t()), diagonal, noise}) {
+    sobel.maxSquaredMagnitude(image, &ours);
+    const cv::Mat expected = opencvSquaredMagnitude(image);
+    EXPECT_EQ(cv::norm(ours, expected, cv::NORM_INF), 0.0) << image.size << " " << image.channels() << " channels";
+    double largest = 0;
+    cv::minMaxLoc(expected, nullptr, &largest);
+    EXPECT_GE(largest, 12240.0 * 12240.0);
+  }
+}
+
 TEST(Sobel5, EdgesAreTheScaledMagnitude) {
   cv::Mat image(48, 64, CV_8UC3, cv::Scalar(10, 20, 30));
   image(cv::Rect(32, 0, 32, 48)).setTo(cv::Scalar(10, 20, 130));  // a step of 100 in red

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "landmark/horizon_refine.h"
 #include "rle_vision/landmark/horizon_finder.h"
 #include "rle_vision/landmark/landmark_detector.h"
 #include "rle_vision/landmark/line_geometry.h"
@@ -79,6 +80,36 @@ TEST(TexturedSky, TheHazyRidgeGetsACandidateOfItsOwn) {
   EXPECT_LT(ridge_twice, 2.0);
   // The first refinement's candidates stay: the forest's step is still one of them.
   EXPECT_LT(nearestCandidate(image, kForestRow, twice), 2.0);
+}
+
+TEST(TexturedSky, RefinementEndsWhenTheFirstLineIsTaken) {
+  // One hypothesis between the ridge and the forest, refined against both percentiles: two
+  // distinct lines; a sink that takes the first ends it there (the second not refined).
+  const cv::Mat image = texturedSkyFrame();
+  LandmarkDetector detector;
+  LandmarkResult result;
+  detector.detectInImage(image, LandmarkOptions(), &result);
+  horizon::RegionGrid fine;
+  fine.build(image, 8);
+  horizon::HorizonRefiner refiner;
+  refiner.sampleTexture(detector.edges(), fine);
+  const horizon::Hypothesis between{0, 0.5 * (kRidgeRow + kForestRow) - image.rows / 2.0, 0};
+  const horizon::RefineOptions options;
+  std::vector<double> rows;
+  auto refine = [&](bool take_first) {
+    rows.clear();
+    refiner.refineEach(detector.edges(), fine, between, options, {95, 50}, [&](const horizon::RefinedHorizon& r) {
+      rows.push_back(r.line.rho / r.line.ny);  // the level line's row
+      return take_first;
+    });
+  };
+  refine(false);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_NEAR(rows[0], kForestRow, 2.0);  // the sky's high edge values: the forest's step
+  EXPECT_NEAR(rows[1], kRidgeRow, 2.0);   // its typical ones: the hazy ridge
+  refine(true);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_NEAR(rows[0], kForestRow, 2.0);
 }
 
 }  // namespace
