@@ -20,27 +20,39 @@ void edgeClasses(const uint8_t* __restrict edges, int width, const uint8_t* __re
 }
 
 // One row of thinEdges: up, mid, down are rows y - 1, y, y + 1; x in [1, width - 1).
-// Branch-free so that it vectorises.
+// Branch-free within a block of kThinBlock pixels so that it vectorises; a block with no pixel
+// reaching min_value holds no crest and is only cleared (most of a frame: sky, walls, floor).
+constexpr int kThinBlock = 32;
+
 RLE_VISION_HOT
 void thinRow(const uint8_t* __restrict up, const uint8_t* __restrict mid, const uint8_t* __restrict down, int width,
              uint8_t min_value, uint8_t* __restrict out) {
-  for (int x = 1; x + 1 < width; ++x) {
-    const int16_t v = mid[x];
-    // The four directions' neighbour pairs: (1, 0), (0, 1), (1, 1), (1, -1).
-    const int16_t a0 = mid[x + 1], b0 = mid[x - 1];
-    const int16_t a1 = down[x], b1 = up[x];
-    const int16_t a2 = down[x + 1], b2 = up[x - 1];
-    const int16_t a3 = up[x + 1], b3 = down[x - 1];
-    const int16_t c0 = 2 * v - a0 - b0, c1 = 2 * v - a1 - b1, c2 = 2 * v - a2 - b2, c3 = 2 * v - a3 - b3;
-    // The direction of largest curvature (the first one on ties), and whether v is a maximum
-    // across it. Integer selects and & (not && or bool) keep the loop vectorisable.
-    const int16_t m0 = (v >= a0) & (v >= b0), m1 = (v >= a1) & (v >= b1);
-    const int16_t m2 = (v >= a2) & (v >= b2), m3 = (v >= a3) & (v >= b3);
-    const int16_t first_two = c0 >= c1, last_two = c2 >= c3;
-    const int16_t c01 = first_two ? c0 : c1, m01 = first_two ? m0 : m1;
-    const int16_t c23 = last_two ? c2 : c3, m23 = last_two ? m2 : m3;
-    const int16_t keep = (c01 >= c23 ? m01 : m23) & (v >= min_value);
-    out[x] = static_cast<uint8_t>(keep ? v : 0);
+  for (int first = 1; first + 1 < width; first += kThinBlock) {
+    const int end = std::min(first + kThinBlock, width - 1);
+    uint8_t strongest = 0;
+    for (int x = first; x < end; ++x) strongest = std::max(strongest, mid[x]);
+    if (strongest < min_value) {
+      std::fill(out + first, out + end, 0);
+      continue;
+    }
+    for (int x = first; x < end; ++x) {
+      const int16_t v = mid[x];
+      // The four directions' neighbour pairs: (1, 0), (0, 1), (1, 1), (1, -1).
+      const int16_t a0 = mid[x + 1], b0 = mid[x - 1];
+      const int16_t a1 = down[x], b1 = up[x];
+      const int16_t a2 = down[x + 1], b2 = up[x - 1];
+      const int16_t a3 = up[x + 1], b3 = down[x - 1];
+      const int16_t c0 = 2 * v - a0 - b0, c1 = 2 * v - a1 - b1, c2 = 2 * v - a2 - b2, c3 = 2 * v - a3 - b3;
+      // The direction of largest curvature (the first one on ties), and whether v is a maximum
+      // across it. Integer selects and & (not && or bool) keep the loop vectorisable.
+      const int16_t m0 = (v >= a0) & (v >= b0), m1 = (v >= a1) & (v >= b1);
+      const int16_t m2 = (v >= a2) & (v >= b2), m3 = (v >= a3) & (v >= b3);
+      const int16_t first_two = c0 >= c1, last_two = c2 >= c3;
+      const int16_t c01 = first_two ? c0 : c1, m01 = first_two ? m0 : m1;
+      const int16_t c23 = last_two ? c2 : c3, m23 = last_two ? m2 : m3;
+      const int16_t keep = (c01 >= c23 ? m01 : m23) & (v >= min_value);
+      out[x] = static_cast<uint8_t>(keep ? v : 0);
+    }
   }
 }
 

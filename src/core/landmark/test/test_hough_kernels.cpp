@@ -1,4 +1,4 @@
-// The landmark step's inner loops against plain references: the ridge profile's AVX2 kernel
+// The landmark step's inner loops against plain references: edge thinning, the ridge profile's AVX2 kernel
 // against the scalar one (bit for bit), the band's interval sort and merge, the unclaimed
 // stretches of a row, and a run's closed-form sums against pixel by pixel.
 #include <algorithm>
@@ -11,12 +11,52 @@
 
 #include "landmark/hough_band.h"
 #include "landmark/ridge_profile.h"
+#include "rle_vision/landmark/edge_objects.h"
 #include "rle_vision/landmark/line_fit.h"
 
 namespace rle_vision {
 namespace {
 
 using hough::Interval;
+
+// thinEdges' rule written pixel by pixel: a pixel >= min_value stays where it is a maximum
+// across the direction (of four) where 2 v - a - b is largest, the first on ties.
+cv::Mat thinReference(const cv::Mat& e, uint8_t min_value) {
+  cv::Mat out(e.size(), CV_8UC1, cv::Scalar(0));
+  const int dx[4][2] = {{1, -1}, {0, 0}, {1, -1}, {1, -1}}, dy[4][2] = {{0, 0}, {1, -1}, {1, -1}, {-1, 1}};
+  for (int y = 1; y + 1 < e.rows; ++y) {
+    for (int x = 1; x + 1 < e.cols; ++x) {
+      const int v = e.at<uint8_t>(y, x);
+      int best = -1, best_curvature = 0;
+      for (int d = 0; d < 4; ++d) {
+        const int a = e.at<uint8_t>(y + dy[d][0], x + dx[d][0]), b = e.at<uint8_t>(y + dy[d][1], x + dx[d][1]);
+        if (best < 0 || 2 * v - a - b > best_curvature) best = d, best_curvature = 2 * v - a - b;
+      }
+      const int a = e.at<uint8_t>(y + dy[best][0], x + dx[best][0]), b = e.at<uint8_t>(y + dy[best][1], x + dx[best][1]);
+      if (v >= min_value && v >= a && v >= b) out.at<uint8_t>(y, x) = static_cast<uint8_t>(v);
+    }
+  }
+  return out;
+}
+
+TEST(EdgeThinning, EqualsThePixelRuleWhereBlocksAreSmoothOrNot) {
+  // Rows of strong and faint stretches of every length (the thinning skips 32-px stretches
+  // without a pixel reaching min_value), at widths around the block size.
+  std::mt19937 rng(11);
+  for (const int width : {3, 31, 33, 64, 97, 640}) {
+    cv::Mat edges(24, width, CV_8UC1);
+    for (int y = 0; y < edges.rows; ++y) {
+      for (int x = 0; x < width; ++x) {
+        const bool strong = ((x + 7 * y) / 13) % 3 == 0;
+        edges.at<uint8_t>(y, x) = static_cast<uint8_t>(strong ? rng() % 256 : rng() % 40);
+      }
+    }
+    cv::Mat ours;
+    thinEdges(edges, 40, &ours);
+    EXPECT_EQ(cv::norm(ours, thinReference(edges, 40), cv::NORM_INF), 0.0) << "width " << width;
+    EXPECT_GT(cv::countNonZero(ours), 0) << "width " << width;
+  }
+}
 
 TEST(RidgeProfile, ScalarSamplesAreBilinear) {
   cv::Mat edges(4, 4, CV_8UC1, cv::Scalar(0));
