@@ -225,8 +225,9 @@ void RegionGrid::skySideSums(const SplitLine& line, double* sums) const {
 
 namespace {
 
-// The split scores of one search: the whole frame's covariance, the same for every line, is
-// measured once.
+// A split's score: the two-Gaussian log-likelihood gain of splitting the grid along a line
+// (larger: a better split), or -infinity when a side holds less than `min_fraction` of the
+// frame. The whole frame's covariance, the same for every line of a search, is measured once.
 class SplitScorer {
  public:
   SplitScorer(const RegionGrid& grid, double noise_variance, double min_fraction)
@@ -264,10 +265,6 @@ SplitLine shifted(SplitLine line, double centre_distance) {
 }
 
 }  // namespace
-
-double RegionGrid::splitScore(const SplitLine& line, double noise_variance, double min_fraction) const {
-  return SplitScorer(*this, noise_variance, min_fraction)(line);
-}
 
 std::vector<Hypothesis> searchSplits(const RegionGrid& fine, const RegionGrid& coarse, int width, int height,
                                      const SearchOptions& o) {

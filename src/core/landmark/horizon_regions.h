@@ -61,9 +61,6 @@ class RegionGrid {
   // The moment sums of the sky side of `line` (full-resolution coordinates); the cell the line
   // crosses counts in part, in proportion to where it crosses, so the sums move smoothly.
   void skySideSums(const SplitLine& line, double* sums) const;
-  // The two-Gaussian log-likelihood gain of splitting along `line` (larger: a better split),
-  // or -infinity when a side holds less than `min_fraction` of the frame.
-  double splitScore(const SplitLine& line, double noise_variance, double min_fraction) const;
 
  private:
   void computeMoments();
