@@ -1,6 +1,7 @@
-// The landmark step's inner loops against plain references: edge thinning, the ridge profile's AVX2 kernel
-// against the scalar one (bit for bit), the band's interval sort and merge, the unclaimed
-// stretches of a row, and a run's closed-form sums against pixel by pixel.
+// The landmark step's inner loops against plain references: edge thinning against its rule
+// pixel by pixel, the ridge profile's AVX2 kernel against the scalar one (bit for bit), the
+// band's interval sort and merge, the unclaimed stretches of a row, and a run's closed-form
+// sums against pixel by pixel.
 #include <algorithm>
 #include <cstring>
 #include <random>
